@@ -1,0 +1,31 @@
+// shakerbench: the command-line entry point. Each subcommand lives in its own file.
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "bench/config_errors.hpp"
+#include "modes_command.hpp"
+
+int main(int argc, char** argv) {
+    CLI::App app{
+        "ShakerBench: a virtual shaker test bench for structures carrying particle dampers.\n"
+        "Stepped-sine campaigns with RMS amplitude control, DEM particles coupled to the\n"
+        "structure, transfer functions and damping curves, correlation with recordings."};
+    app.set_version_flag("--version", std::string("shakerbench ") + SB_VERSION);
+    app.require_subcommand(1);
+    app.footer(
+        "Run 'shakerbench SUBCOMMAND --help' for the options of a subcommand.\n"
+        "Exit codes: 0 success, 1 simulation failure, 2 bad input (config, data, "
+        "command line).");
+
+    int exit_code = 0;
+    sb::apps::register_modes_command(app, exit_code);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        const int code = app.exit(e);
+        // CLI11 returns 0 for --help and --version; any other parse error is bad input.
+        return code == 0 ? 0 : sb::bench::kExitBadInput;
+    }
+    return exit_code;
+}

@@ -1,0 +1,48 @@
+# Warnings, sanitizers and the module helper as INTERFACE targets (style.md, pbrt-v4).
+
+add_library(sb_warnings INTERFACE)
+add_library(sb::warnings ALIAS sb_warnings)
+target_compile_options(sb_warnings INTERFACE
+  -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion -Wnon-virtual-dtor
+  -Wold-style-cast -Woverloaded-virtual -Wnull-dereference -Wdouble-promotion -Wformat=2
+  $<$<BOOL:${SB_WARNINGS_AS_ERRORS}>:-Werror>)
+# g++ 12 reports -Wrestrict inside libstdc++ for ordinary std::string concatenation at -O2
+# (GCC bug 105329, fixed in 13); the warning says nothing about our code there.
+if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
+  target_compile_options(sb_warnings INTERFACE -Wno-restrict)
+endif()
+
+add_library(sb_sanitizers INTERFACE)
+add_library(sb::sanitizers ALIAS sb_sanitizers)
+if(SB_SANITIZE)
+  target_compile_options(sb_sanitizers INTERFACE
+    -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all)
+  target_link_options(sb_sanitizers INTERFACE -fsanitize=address,undefined)
+endif()
+
+# sb_add_module(NAME SOURCES ... DEPENDS ...): a library target sb_NAME with alias sb::NAME,
+# the repository root as include root (headers are included as "NAME/file.hpp").
+function(sb_add_module name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS;PRIVATE_DEPENDS" ${ARGN})
+  if(ARG_SOURCES)
+    add_library(sb_${name} STATIC ${ARG_SOURCES})
+    target_include_directories(sb_${name} PUBLIC ${PROJECT_SOURCE_DIR})
+    target_link_libraries(sb_${name} PUBLIC ${ARG_DEPENDS} PRIVATE sb::warnings ${ARG_PRIVATE_DEPENDS})
+    target_link_libraries(sb_${name} PUBLIC sb::sanitizers)
+  else()
+    add_library(sb_${name} INTERFACE)
+    target_include_directories(sb_${name} INTERFACE ${PROJECT_SOURCE_DIR})
+    target_link_libraries(sb_${name} INTERFACE ${ARG_DEPENDS} sb::sanitizers)
+  endif()
+  add_library(sb::${name} ALIAS sb_${name})
+endfunction()
+
+# sb_add_test(NAME LABEL SOURCES ... DEPENDS ...): one GoogleTest executable registered with
+# CTest, every test in it carrying LABEL (unit, validation or slow).
+function(sb_add_test name label)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPENDS} GTest::gtest GTest::gtest_main sb::warnings)
+  target_compile_definitions(${name} PRIVATE SB_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  gtest_discover_tests(${name} PROPERTIES LABELS ${label} DISCOVERY_TIMEOUT 60)
+endfunction()

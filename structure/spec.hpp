@@ -1,0 +1,135 @@
+// What a structure is made of, in SI, as the config layer hands it to the structure module.
+#pragma once
+
+#include <Eigen/Core>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/violation.hpp"
+
+namespace sb::structure {
+
+/// Beam frame: x along the beam axis from the root, y along the section's longer side
+/// (stiff bending), z along the shorter side (weak bending: the shaker direction).
+
+enum class SupportKind {
+    clamped,  ///< all six DOFs fixed
+    pinned,   ///< translations and torsion fixed, bending rotations free
+    free,     ///< nothing fixed
+    elastic,  ///< three translational and three rotational springs to ground
+};
+
+struct Support {
+    std::string name;  ///< e.g. "root", "tip"
+    double x_m = 0.0;  ///< position along the beam [m]
+    SupportKind kind = SupportKind::clamped;
+    Eigen::Vector3d translational_stiffness_n_per_m = Eigen::Vector3d::Zero();  ///< elastic only
+    Eigen::Vector3d rotational_stiffness_nm_per_rad = Eigen::Vector3d::Zero();  ///< elastic only
+};
+
+/// A named point on the beam axis (sensor, load cell, shaker, damper): the mesh has a node there.
+struct NamedPoint {
+    std::string name;
+    double x_m = 0.0;  ///< position along the beam [m]
+};
+
+/// A rigid lumped mass attached to the node at x_m, its centre of gravity at offset_m from the
+/// beam axis, with rotary inertia about its own centre of gravity (principal axes = beam frame).
+struct LumpedMass {
+    std::string name;
+    double x_m = 0.0;                                         ///< [m]
+    double mass_kg = 0.0;                                     ///< [kg]
+    Eigen::Vector3d inertia_kg_m2 = Eigen::Vector3d::Zero();  ///< [kg m^2] about x, y, z
+    Eigen::Vector3d offset_m = Eigen::Vector3d::Zero();       ///< [m] CG offset from axis
+};
+
+/// Straight prismatic beam with a rectangular section.
+struct BeamSpec {
+    double length_m = 0.0;
+    double width_m = 0.0;      ///< section side along y (the longer one) [m]
+    double thickness_m = 0.0;  ///< section side along z (the shorter one, shaker direction) [m]
+    double density_kg_m3 = 0.0;
+    double youngs_modulus_pa = 0.0;
+    std::optional<double>
+        shear_modulus_pa;   ///< given: Timoshenko elements; absent: Euler-Bernoulli
+    int min_elements = 40;  ///< the mesh has at least this many elements
+    std::vector<Support> supports;
+    std::vector<NamedPoint> points;
+    std::vector<LumpedMass> masses;
+
+    /// Every violated constraint (keys relative to the beam section of the config).
+    [[nodiscard]] Violations validate() const;
+};
+
+/// A chain or network of point masses moving along the excitation direction (papers 003, 004).
+struct LumpedSpec {
+    struct Mass {
+        std::string name;
+        double mass_kg = 0.0;
+    };
+    /// A spring-dashpot between two masses, or between a mass and "ground".
+    struct Spring {
+        std::string from;
+        std::string to;
+        double stiffness_n_per_m = 0.0;
+        double damping_n_s_per_m = 0.0;
+    };
+    std::vector<Mass> masses;
+    std::vector<Spring> springs;
+
+    [[nodiscard]] Violations validate() const;
+};
+
+/// Mass and stiffness matrices from Matrix Market files with named DOFs (paper 001's bracket).
+struct MatrixSpec {
+    std::filesystem::path mass_file;
+    std::filesystem::path stiffness_file;
+    /// Named DOFs: name -> zero-based row index. A named point "p" is made of the DOFs named
+    /// "p.x", "p.y", "p.z" (and optionally "p.rx", "p.ry", "p.rz"), whichever exist.
+    std::vector<std::pair<std::string, int>> named_dofs;
+
+    [[nodiscard]] Violations validate() const;
+};
+
+/// Modal damping ratios per mode, or Rayleigh damping C = alpha M + beta K.
+struct DampingSpec {
+    enum class Model { modal, rayleigh };
+    Model model = Model::modal;
+    double default_ratio = 0.005;      ///< modal: ratio of every mode not listed [-]
+    std::vector<double> modal_ratios;  ///< modal: ratios of modes 1, 2, ... [-]
+    double alpha_per_s = 0.0;          ///< rayleigh: mass-proportional coefficient [1/s]
+    double beta_s = 0.0;               ///< rayleigh: stiffness-proportional coefficient [s]
+
+    [[nodiscard]] Violations validate() const;
+    /// Damping ratio of a mode (1-based index) with circular frequency omega_rad_s.
+    [[nodiscard]] double ratio(int mode, double omega_rad_s) const;
+};
+
+/// How the structure is driven.
+struct ExcitationSpec {
+    enum class Kind { force, base };
+    Kind kind = Kind::force;
+    std::string point;                                     ///< force: named point the force acts at
+    std::string support;                                   ///< base: the support that moves
+    Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();  ///< unit vector, structure frame
+
+    [[nodiscard]] Violations validate() const;
+};
+
+struct StructureSpec {
+    enum class Kind { beam, lumped, matrix };
+    Kind kind = Kind::beam;
+    BeamSpec beam;
+    LumpedSpec lumped;
+    MatrixSpec matrix;
+    DampingSpec damping;
+    ExcitationSpec excitation;
+    int modes = 6;                                     ///< modes kept in the reduced modal model
+    Eigen::Vector3d gravity_m_s2{0.0, 0.0, -9.80665};  ///< structure frame
+
+    [[nodiscard]] Violations validate() const;
+};
+
+}  // namespace sb::structure
