@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "bench/config_errors.hpp"
+#include "identify_command.hpp"
 #include "modes_command.hpp"
 
 int main(int argc, char** argv) {
@@ -19,6 +20,7 @@ int main(int argc, char** argv) {
 
     int exit_code = 0;
     sb::apps::register_modes_command(app, exit_code);
+    sb::apps::register_identify_command(app, exit_code);
 
     try {
         app.parse(argc, argv);

@@ -1,0 +1,115 @@
+// Damping versus level: per arrangement and level, FRF and the three estimators.
+#include "identification/damping_curve.hpp"
+
+#include <algorithm>
+#include <map>
+#include <stdexcept>
+
+#include "core/units.hpp"
+#include "identification/energy.hpp"
+
+namespace sb::identification {
+
+namespace {
+
+void subtract(ModalEstimate& e, double background) {
+    if (e.ok()) e.damping_ratio = subtract_background(e.damping_ratio, background);
+}
+
+}  // namespace
+
+std::vector<LevelIdentification> identify_recording(const Recording& rec,
+                                                    const IdentifyOptions& options) {
+    const std::size_t ref = rec.reference_index();
+    std::size_t resp = rec.channels.size();
+    if (!options.response_channel.empty()) {
+        resp = rec.channel_index(options.response_channel);
+    } else {
+        for (std::size_t i = 0; i < rec.channels.size() && resp == rec.channels.size(); ++i) {
+            if (rec.channels[i].role == ChannelRole::control) resp = i;
+        }
+        for (std::size_t i = 0; i < rec.channels.size() && resp == rec.channels.size(); ++i) {
+            if (rec.channels[i].role == ChannelRole::response) resp = i;
+        }
+    }
+    if (resp == rec.channels.size() || ref == rec.channels.size()) {
+        throw std::invalid_argument("identify_recording: no response channel '" +
+                                    options.response_channel + "'");
+    }
+    const std::string& quantity = rec.channels[resp].quantity;
+    const bool base = rec.info.excitation == "base";
+    FrfForm form = FrfForm::accelerance;
+    if (!base && quantity == "velocity") form = FrfForm::mobility;
+    if (!base && quantity == "displacement") form = FrfForm::receptance;
+
+    std::vector<std::pair<std::string, double>> order;
+    std::map<std::pair<std::string, double>, std::map<double, std::pair<std::complex<double>, int>>>
+        groups;
+    for (const auto& p : rec.points) {
+        const auto key = std::make_pair(p.arrangement, p.level_g);
+        if (groups.find(key) == groups.end()) order.push_back(key);
+        std::complex<double> t = p.values[resp].amplitude / p.values[ref].amplitude;
+        if (base) t -= 1.0;  // relative transmissibility
+        auto& cell = groups[key][p.frequency_hz];
+        cell.first += t;
+        cell.second += 1;
+    }
+    const bool energy =
+        options.effective_mass_kg > 0.0 && !base && rec.channels[ref].quantity == "force";
+    std::vector<LevelIdentification> out;
+    for (const auto& key : order) {
+        LevelIdentification l;
+        l.arrangement = key.first;
+        l.level_g = key.second;
+        l.channel = rec.channels[resp].name;
+        l.frf.form = form;
+        for (const auto& [f, sum] : groups[key]) {
+            l.frf.frequency_hz.push_back(f);
+            l.frf.value.push_back(sum.first / static_cast<double>(sum.second));
+        }
+        if (energy) {
+            // W/T (paper 003) at the point of largest response; W = π Im(F conj X) and
+            // T = ½ m ω²|X|² with X from the response amplitude per unit force (F = 1 N).
+            const Frf receptance = convert(l.frf, FrfForm::receptance);
+            std::size_t k = 0;
+            for (std::size_t i = 1; i < receptance.value.size(); ++i) {
+                if (std::abs(receptance.value[i]) > std::abs(receptance.value[k])) k = i;
+            }
+            const double w = hz_to_rad_s(receptance.frequency_hz[k]);
+            const std::complex<double> x = receptance.value[k];
+            const double psi = specific_damping_capacity(
+                dissipated_energy_per_cycle(1.0, x),
+                kinetic_energy_amplitude(options.effective_mass_kg, w, x));
+            l.specific_damping_capacity = psi - 4.0 * kPi * options.background_damping_ratio;
+            l.capacity_frequency_hz = receptance.frequency_hz[k];
+        }
+        l.half_power = half_power(l.frf, options.half_power_form);
+        l.circle_fit = circle_fit(l.frf, options.circle);
+        l.rational_fraction = rational_fraction_fit(l.frf, options.rational_fraction);
+        for (auto* e : {&l.half_power, &l.circle_fit, &l.rational_fraction}) {
+            subtract(*e, options.background_damping_ratio);
+        }
+        out.push_back(std::move(l));
+    }
+    return out;
+}
+
+std::vector<DampingRow> damping_rows(const std::vector<LevelIdentification>& levels,
+                                     bool include_rational_fraction) {
+    std::vector<DampingRow> rows;
+    for (const auto& l : levels) {
+        const std::pair<Method, const ModalEstimate*> all[] = {
+            {Method::half_power, &l.half_power},
+            {Method::circle_fit, &l.circle_fit},
+            {Method::rational_fraction, &l.rational_fraction}};
+        for (const auto& [m, e] : all) {
+            if (!e->ok() || (m == Method::rational_fraction && !include_rational_fraction))
+                continue;
+            rows.push_back({l.arrangement, l.level_g, e->natural_frequency_hz, e->damping_ratio,
+                            std::string(to_string(m))});
+        }
+    }
+    return rows;
+}
+
+}  // namespace sb::identification

@@ -1,0 +1,62 @@
+// Natural frequency and damping per arrangement and level of a recording, by every method.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "identification/circle_fit.hpp"
+#include "identification/frf.hpp"
+#include "identification/half_power.hpp"
+#include "identification/modal_estimate.hpp"
+#include "identification/rational_fraction.hpp"
+#include "identification/recording.hpp"
+
+namespace sb::identification {
+
+/// Options of identify_recording.
+struct IdentifyOptions {
+    /// Response channel; empty: the control channel, else the first response channel.
+    std::string response_channel;
+    /// Damping ratio of the bare rig, subtracted from every estimate [-] (0: none).
+    double background_damping_ratio = 0.0;
+    HalfPowerForm half_power_form = HalfPowerForm::mobility;
+    CircleFitOptions circle;
+    RationalFractionOptions rational_fraction;
+    /// Effective (modal) mass at the response point [kg] for the specific damping capacity
+    /// W/T; 0 skips it. Needs force excitation with a force reference.
+    double effective_mass_kg = 0.0;
+};
+
+/// Everything identified at one arrangement and level.
+struct LevelIdentification {
+    std::string arrangement;
+    double level_g = 0.0;  ///< [g]
+    std::string channel;   ///< response channel used
+    Frf frf;  ///< repeats averaged; force: response/reference, base: (resp − table)/table
+    ModalEstimate half_power;
+    ModalEstimate circle_fit;
+    ModalEstimate rational_fraction;
+    /// Specific damping capacity ψ = W/T of paper 003 at the grid point of largest response
+    /// [-], background 4πζ_bg subtracted; NaN unless IdentifyOptions::effective_mass_kg > 0.
+    /// For a viscous SDOF it equals 4πζ f_n/f at that point.
+    double specific_damping_capacity = std::numeric_limits<double>::quiet_NaN();
+    double capacity_frequency_hz =
+        std::numeric_limits<double>::quiet_NaN();  ///< where ψ is taken [Hz]
+};
+
+/// Groups points by arrangement and level (in order of first appearance), averages repeats
+/// (same frequency) of the complex ratio, builds the FRF and runs the three estimators.
+/// Force excitation: response/reference in the form of the response quantity (acceleration →
+/// accelerance, velocity → mobility, displacement → receptance). Base excitation: the relative
+/// transmissibility, exact for a base-excited SDOF. Throws std::invalid_argument if the
+/// response channel does not exist.
+std::vector<LevelIdentification> identify_recording(const Recording& recording,
+                                                    const IdentifyOptions& options = {});
+
+/// damping.csv rows of the successful estimates; methods half-power and circle-fit (the two
+/// formats.md lists) and, when `include_rational_fraction`, rational-fraction.
+std::vector<DampingRow> damping_rows(const std::vector<LevelIdentification>& levels,
+                                     bool include_rational_fraction = false);
+
+}  // namespace sb::identification

@@ -1,0 +1,48 @@
+// The result of one modal estimator: natural frequency and damping, or a status saying why not.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <string_view>
+
+namespace sb::identification {
+
+/// Why an estimator did or did not return numbers. std::expected is not available in g++ 12,
+/// so every estimator returns a ModalEstimate carrying one of these and a message.
+enum class EstimateStatus {
+    ok,                      ///< numbers are valid
+    too_few_points,          ///< fewer points near the peak than the method needs
+    peak_at_grid_edge,       ///< the largest |FRF| is the first or last grid point
+    no_lower_crossing,       ///< no point below the half-power level under the peak
+    no_upper_crossing,       ///< no point below the half-power level above the peak
+    too_few_points_in_band,  ///< fewer than 2 grid points inside the half-power band
+    fit_failed,              ///< the fit gave no physical answer (negative, complex, outside)
+};
+
+/// Which estimator produced a result.
+enum class Method { half_power, circle_fit, rational_fraction };
+
+/// Natural frequency and damping of one mode by one method.
+struct ModalEstimate {
+    EstimateStatus status = EstimateStatus::fit_failed;
+    std::string message;  ///< empty when ok; otherwise why, in words, with the numbers
+    double natural_frequency_hz = std::numeric_limits<double>::quiet_NaN();  ///< f_n [Hz]
+    double damping_ratio = std::numeric_limits<double>::quiet_NaN();         ///< viscous ζ [-]
+    /// Standard deviation of the per-pair damping ratios (circle fit) [-]; 0 for other methods.
+    double damping_spread = 0.0;
+    int points_used = 0;  ///< grid points entering the estimate [-]
+
+    bool ok() const noexcept { return status == EstimateStatus::ok; }
+    /// Loss factor η = 2ζ [-] (equivalent at resonance, Ewins).
+    double loss_factor() const noexcept { return 2.0 * damping_ratio; }
+};
+
+/// A failed estimate with status and message.
+ModalEstimate failed_estimate(EstimateStatus status, std::string message);
+
+/// Lower-case name of a status as printed and documented (e.g. "no-lower-crossing").
+std::string_view to_string(EstimateStatus status);
+/// Name of a method as written in damping.csv ("half-power", "circle-fit", "rational-fraction").
+std::string_view to_string(Method method);
+
+}  // namespace sb::identification

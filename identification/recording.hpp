@@ -1,0 +1,82 @@
+// The recording directory of formats.md as data: what was recorded and one row per point.
+#pragma once
+
+#include <complex>
+#include <string>
+#include <vector>
+
+namespace sb::identification {
+
+/// Role of a channel (formats.md).
+enum class ChannelRole {
+    reference,  ///< denominator of transfer functions (exactly one)
+    control,    ///< the channel whose RMS was controlled (at most one)
+    response,   ///< any other measured channel
+};
+
+/// One channel of `[channels.NAME]` in recording.toml.
+struct Channel {
+    std::string name;      ///< the table key, also the points.csv column prefix
+    std::string quantity;  ///< force | acceleration | velocity | displacement | voltage
+    std::string unit;      ///< SI unit as text, e.g. "m/s^2"
+    std::string location;  ///< free text or a named point of a config
+    ChannelRole role = ChannelRole::response;
+};
+
+/// `[recording]` of recording.toml.
+struct RecordingInfo {
+    std::string name;
+    std::string kind = "measured";     ///< measured | simulated
+    std::string excitation = "force";  ///< force | base
+    std::string description;
+};
+
+/// One channel's values at one point.
+struct ChannelValue {
+    double rms = 0.0;                ///< RMS over the steady window [channel unit]
+    std::complex<double> amplitude;  ///< fundamental, peak, x(t) = Re{X e^{iωt}} [channel unit]
+};
+
+/// One row of points.csv.
+struct PointRow {
+    std::string arrangement;           ///< e.g. "H-0"
+    double level_g = 0.0;              ///< target RMS level [g]
+    double frequency_hz = 0.0;         ///< excitation frequency [Hz]
+    std::string status;                ///< converged | limit-cycle-2 | closest | measured
+    std::string series;                ///< time history path relative to the directory, or empty
+    std::vector<ChannelValue> values;  ///< one per channel, in Recording::channels order
+};
+
+/// One row of damping.csv.
+struct DampingRow {
+    std::string arrangement;
+    double level_g = 0.0;               ///< [g]
+    double natural_frequency_hz = 0.0;  ///< [Hz]
+    double damping_ratio = 0.0;         ///< [-]
+    std::string method;                 ///< half-power | circle-fit (| rational-fraction)
+};
+
+/// A whole recording directory.
+struct Recording {
+    RecordingInfo info;
+    std::vector<Channel> channels;  ///< in the order of recording.toml
+    std::vector<PointRow> points;
+    std::vector<DampingRow> damping;  ///< empty when there is no damping.csv
+
+    /// Index of the reference channel (exactly one after a successful read).
+    std::size_t reference_index() const;
+    /// Index of a channel by name, or channels.size() if absent.
+    std::size_t channel_index(const std::string& name) const;
+};
+
+/// A time history (series/*.csv): uniform sampling, one column per channel.
+struct TimeHistory {
+    std::vector<std::string> channels;         ///< column names after time_s
+    std::vector<double> time_s;                ///< [s]
+    std::vector<std::vector<double>> columns;  ///< columns[c][sample] [channel unit]
+
+    /// 1 / (mean sampling step) [Hz]; 0 with fewer than 2 samples.
+    double sample_rate_hz() const;
+};
+
+}  // namespace sb::identification

@@ -1,0 +1,48 @@
+// Readers and writers of the recording directory (formats.md): recording.toml, points.csv,
+// damping.csv and series/*.csv. Every reader throws FileError (file:line:col: message).
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "identification/recording.hpp"
+
+namespace sb::identification {
+
+/// Reads recording.toml, points.csv and damping.csv (if present) of a directory. Errors:
+/// unknown keys, bad enumerations, not exactly one reference or more than one control channel
+/// (recording.toml); missing, unknown or duplicated columns, cells that are not numbers, bad
+/// status (points.csv). Series are not loaded (see read_time_history_csv).
+Recording read_recording(const std::filesystem::path& directory);
+
+/// Reads recording.toml only (info and channels).
+Recording read_recording_toml(const std::filesystem::path& file);
+
+/// Reads points.csv against the channels of `recording` and appends to recording.points.
+void read_points_csv(const std::filesystem::path& file, Recording& recording);
+
+/// Reads damping.csv.
+std::vector<DampingRow> read_damping_csv(const std::filesystem::path& file);
+
+/// Reads a time history: header `time_s,<channel>,...`, numbers, uniform sampling (a step
+/// differing from the mean by more than 1e-6 relative is an error). Lines starting with `#`
+/// are comments.
+TimeHistory read_time_history_csv(const std::filesystem::path& file);
+
+/// Writes recording.toml, points.csv and (if non-empty) damping.csv; creates the directory.
+/// Numbers are written with 17 significant digits so a write–read cycle is exact.
+void write_recording(const std::filesystem::path& directory, const Recording& recording);
+
+/// Writes recording.toml (info and channels, in order).
+void write_recording_toml(const std::filesystem::path& file, const Recording& recording);
+
+/// Writes points.csv (fixed columns, then C_rms, C_re, C_im per channel).
+void write_points_csv(const std::filesystem::path& file, const Recording& recording);
+
+/// Writes damping.csv.
+void write_damping_csv(const std::filesystem::path& file, const std::vector<DampingRow>& rows);
+
+/// Writes a time history CSV.
+void write_time_history_csv(const std::filesystem::path& file, const TimeHistory& history);
+
+}  // namespace sb::identification

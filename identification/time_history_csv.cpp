@@ -1,0 +1,64 @@
+// series/*.csv time histories (formats.md): header time_s,<channel>,..., uniform sampling.
+#include <cmath>
+#include <fstream>
+
+#include "identification/csv_table.hpp"
+#include "identification/file_error.hpp"
+#include "identification/recording_io.hpp"
+
+namespace sb::identification {
+
+namespace {
+/// Jitter allowed on the sampling step: text with 17 digits reproduces steps to ~1e-15; files
+/// from other tools print 6–10 digits, hence 1e-6 relative.
+constexpr double kStepTolerance = 1e-6;
+}  // namespace
+
+double TimeHistory::sample_rate_hz() const {
+    if (time_s.size() < 2) return 0.0;
+    return static_cast<double>(time_s.size() - 1) / (time_s.back() - time_s.front());
+}
+
+TimeHistory read_time_history_csv(const std::filesystem::path& path) {
+    const auto t = detail::read_csv(path);
+    if (t.header[0].text != "time_s") {
+        throw FileError(t.file, t.header[0].line, t.header[0].column,
+                        "first column must be 'time_s', found '" + t.header[0].text + "'");
+    }
+    TimeHistory h;
+    for (std::size_t i = 1; i < t.header.size(); ++i) h.channels.push_back(t.header[i].text);
+    h.columns.resize(h.channels.size());
+    for (const auto& row : t.rows) {
+        h.time_s.push_back(detail::number(t, row[0], "time_s"));
+        for (std::size_t c = 1; c < row.size(); ++c)
+            h.columns[c - 1].push_back(detail::number(t, row[c], h.channels[c - 1]));
+    }
+    if (h.time_s.size() >= 2) {
+        const double dt = 1.0 / h.sample_rate_hz();
+        for (std::size_t i = 1; i < h.time_s.size(); ++i) {
+            if (std::abs(h.time_s[i] - h.time_s[i - 1] - dt) > kStepTolerance * dt) {
+                const auto& cell = t.rows[i][0];
+                throw FileError(t.file, cell.line, cell.column,
+                                "non-uniform sampling: step " +
+                                    std::to_string(h.time_s[i] - h.time_s[i - 1]) + " s, mean " +
+                                    std::to_string(dt) + " s");
+            }
+        }
+    }
+    return h;
+}
+
+void write_time_history_csv(const std::filesystem::path& path, const TimeHistory& h) {
+    std::ofstream f(path, std::ios::binary);
+    if (!f) throw FileError(path.string(), 0, 0, "cannot open the file for writing");
+    f << "time_s";
+    for (const auto& c : h.channels) f << ',' << c;
+    f << '\n';
+    for (std::size_t i = 0; i < h.time_s.size(); ++i) {
+        f << detail::exact_text(h.time_s[i]);
+        for (const auto& col : h.columns) f << ',' << detail::exact_text(col[i]);
+        f << '\n';
+    }
+}
+
+}  // namespace sb::identification

@@ -1,0 +1,216 @@
+// UFF58: exact round trip, a hand-written file with the reader traps, binary 58b.
+#include "identification/uff58.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "identification/file_error.hpp"
+#include "sdof_frf.hpp"
+
+namespace sb::identification {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Values written with E20.12 carry 13 significant digits: relative error ≤ 5e-13.
+constexpr double kNominalRelative = 1e-12;
+/// Abscissa in E13.5: 6 significant digits.
+constexpr double kAbscissaRelative = 1e-5;
+
+fs::path temp_file(const std::string& name) {
+    const auto dir = fs::temp_directory_path() / "sb_identification_uff58_test";
+    fs::create_directories(dir);
+    return dir / name;
+}
+
+void write_text(const fs::path& p, const std::string& s) {
+    std::ofstream f(p, std::ios::binary);
+    f << s;
+}
+
+std::vector<Uff58Record> sample_records() {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    auto frf = testing::modal_accelerance(testing::grid_around(6.37, 0.03, 17, 4.0, 0.1),
+                                          {{6.37, 0.03, 1.0}});
+    Uff58Record a = to_uff58(frf, "accelerance beam H-0 0.5 g");
+    a.response_name = "acc_damper";
+    a.response_node = 4;
+    a.response_direction = 2;
+    a.reference_node = 1;
+    a.reference_direction = 2;
+    Uff58Record t;
+    t.function_type = 1;
+    t.ordinate_type = 4;
+    t.abscissa = {17, 0, 0, 0, "Time", "s"};
+    t.denominator = {};
+    for (int i = 0; i < 11; ++i) {
+        t.x.push_back(i / 1024.0);
+        t.y.emplace_back(u(rng) * 1e-3, 0.0);
+    }
+    return {a, t};
+}
+
+TEST(Uff58, RoundTripsEveryNumberBitForBitWithExactDigits) {
+    const auto records = sample_records();
+    const auto p = temp_file("exact.uff");
+    write_uff58(p, records, Uff58Digits::exact);
+    const auto back = read_uff58(p);
+    ASSERT_EQ(back.size(), records.size());
+    for (std::size_t k = 0; k < records.size(); ++k) {
+        EXPECT_EQ(back[k].x, records[k].x);
+        EXPECT_EQ(back[k].y, records[k].y);
+        EXPECT_EQ(back[k].function_type, records[k].function_type);
+        EXPECT_EQ(back[k].response_name, records[k].response_name);
+        EXPECT_EQ(back[k].response_node, records[k].response_node);
+        EXPECT_EQ(back[k].response_direction, records[k].response_direction);
+        EXPECT_EQ(back[k].ordinate.data_type, records[k].ordinate.data_type);
+        EXPECT_EQ(back[k].abscissa.units, records[k].abscissa.units);
+        EXPECT_EQ(back[k].id[0], records[k].id[0]);
+    }
+    // Every line of the file stays within 80 columns.
+    std::ifstream f(p);
+    for (std::string line; std::getline(f, line);) EXPECT_LE(line.size(), 80u) << line;
+}
+
+TEST(Uff58, NominalLayoutKeepsThirteenDigitsAndRewritesIdentically) {
+    const auto records = sample_records();
+    const auto p = temp_file("nominal.uff");
+    write_uff58(p, records, Uff58Digits::nominal);
+    const auto back = read_uff58(p);
+    ASSERT_EQ(back.size(), 2u);
+    for (std::size_t k = 0; k < 2; ++k) {
+        for (std::size_t i = 0; i < records[k].y.size(); ++i) {
+            EXPECT_NEAR(back[k].y[i].real(), records[k].y[i].real(),
+                        kNominalRelative * std::abs(records[k].y[i]));
+            EXPECT_NEAR(back[k].y[i].imag(), records[k].y[i].imag(),
+                        kNominalRelative * std::abs(records[k].y[i]));
+            EXPECT_NEAR(back[k].x[i], records[k].x[i], kAbscissaRelative * records[k].x.back());
+        }
+    }
+    // Write what was read: the same numbers again (a fixed point).
+    const auto p2 = temp_file("nominal2.uff");
+    write_uff58(p2, back, Uff58Digits::nominal);
+    const auto again = read_uff58(p2);
+    for (std::size_t k = 0; k < 2; ++k) {
+        EXPECT_EQ(again[k].y, back[k].y);
+        EXPECT_EQ(again[k].x, back[k].x);
+    }
+}
+
+TEST(Uff58, ReadsAHandWrittenFileWithDExponentsPaddingGluedFieldsAndOtherDatasets) {
+    // Layout from research note §4.2–4.3, typed by hand: a dataset 151 to skip, a complex
+    // double uneven FRF (case 8) with a Fortran D exponent and a glued line, and a real single
+    // even time response (case 1) whose last row is padded with zeros past num_pts.
+    const std::string text =
+        "    -1\n"
+        "   151\n"
+        "model name\n"
+        "    -1\n"
+        "    -1\n"
+        "    58\n"
+        "FRF acc/force\n"
+        "\n"
+        "25-Nov-26 10:00:00\n"
+        "NONE\n"
+        "NONE\n"
+        "    4         1    0         0 acc       \x20        4   2 force     \x20        1   2\n"
+        "         6         3         0  0.00000E+00  0.00000E+00  0.00000E+00\n"
+        "        18    0    0    0 Frequency            Hz\n"
+        "        12    1    0    0 Acceleration         m/s^2\n"
+        "        13    0    1    0 Force                N\n"
+        "         0    0    0    0 NONE                 NONE\n"
+        "  1.00000E+01  1.250000000000D+00 -2.500000000000E-01\n"
+        "  1.05000E+01  2.000000000000E+00-1.000000000000E+00\n"
+        "  1.10000E+01  1.0-1 3.0+00\r\n"
+        "    -1\n"
+        "    -1\n"
+        "    58\n"
+        "time\nNONE\nNONE\nNONE\nNONE\n"
+        "    1         0    0         0 acc                4   2 NONE               0   0\n"
+        "         2         8         1  0.00000E+00  1.00000E-03  0.00000E+00\n"
+        "        17    0    0    0 Time                 s\n"
+        "        12    1    0    0 Acceleration         m/s^2\n"
+        "         0    0    0    0 NONE                 NONE\n"
+        "         0    0    0    0 NONE                 NONE\n"
+        "  1.00000E+00  2.00000E+00  3.00000E+00  4.00000E+00  5.00000E+00  6.00000E+00\n"
+        "  7.00000D+00  8.00000E+00  0.00000E+00  0.00000E+00  0.00000E+00  0.00000E+00\n"
+        "    -1\n";
+    const auto p = temp_file("hand.uff");
+    write_text(p, text);
+    const auto r = read_uff58(p);
+    ASSERT_EQ(r.size(), 2u);
+    EXPECT_EQ(r[0].function_type, 4);
+    EXPECT_EQ(r[0].response_name, "acc");
+    EXPECT_EQ(r[0].response_node, 4);
+    EXPECT_EQ(r[0].reference_name, "force");
+    EXPECT_EQ(r[0].id[1], "NONE");  // blank ID line
+    ASSERT_EQ(r[0].x.size(), 3u);
+    EXPECT_EQ(r[0].x[1], 10.5);
+    EXPECT_EQ(r[0].y[0], std::complex<double>(1.25, -0.25));
+    EXPECT_EQ(r[0].y[1], std::complex<double>(2.0, -1.0));
+    EXPECT_EQ(r[0].y[2], std::complex<double>(0.1, 3.0));
+    const Frf frf = to_frf(r[0]);
+    EXPECT_EQ(frf.form, FrfForm::accelerance);
+    EXPECT_EQ(r[1].function_type, 1);
+    ASSERT_EQ(r[1].y.size(), 8u);
+    EXPECT_EQ(r[1].y[6].real(), 7.0);
+    EXPECT_NEAR(r[1].x[7], 7e-3, 1e-15);
+}
+
+TEST(Uff58, ReadsBinary58bWithAWrongByteCountAndAStrayCrLf) {
+    std::string s =
+        "    -1\n"
+        "    58b     1     2          11          16     0     0           0           0\n"
+        "bin\nNONE\nNONE\nNONE\nNONE\n"
+        "    4         1    0         0 acc                4   2 force              1   2\n"
+        "         6         2         0  0.00000E+00  0.00000E+00  0.00000E+00\n"
+        "        18    0    0    0 Frequency            Hz\n"
+        "        12    1    0    0 Acceleration         m/s^2\n"
+        "        13    0    1    0 Force                N\n"
+        "         0    0    0    0 NONE                 NONE\n";
+    const double v[6] = {5.0, 0.1, -0.2, 6.0, -1.0e-300, 12345.678};
+    char bytes[sizeof v];
+    std::memcpy(bytes, v, sizeof v);  // the test host is little-endian, like the header says
+    s.append(bytes, sizeof v);
+    s += "\r\n    -1\n";
+    const auto p = temp_file("bin.uff");
+    write_text(p, s);
+    const auto r = read_uff58(p);
+    ASSERT_EQ(r.size(), 1u);
+    EXPECT_EQ(r[0].x, (std::vector<double>{5.0, 6.0}));
+    EXPECT_EQ(r[0].y[0], std::complex<double>(0.1, -0.2));
+    EXPECT_EQ(r[0].y[1], std::complex<double>(-1.0e-300, 12345.678));
+}
+
+TEST(Uff58, ReportsFileLineAndColumnOfABadNumber) {
+    const std::string text =
+        "    -1\n    58\nx\nx\nx\nx\nx\n"
+        "    4         1    0         0 acc                4   2 force              1   2\n"
+        "         6         1         0  0.00000E+00  0.00000E+00  0.00000E+00\n"
+        "        18    0    0    0 Frequency            Hz\n"
+        "        12    1    0    0 Acceleration         m/s^2\n"
+        "        13    0    1    0 Force                N\n"
+        "         0    0    0    0 NONE                 NONE\n"
+        "  1.00000E+01  1.250000000000E+00   oops\n"
+        "    -1\n";
+    const auto p = temp_file("bad.uff");
+    write_text(p, text);
+    try {
+        read_uff58(p);
+        FAIL() << "no error";
+    } catch (const FileError& e) {
+        EXPECT_EQ(e.line(), 14);
+        EXPECT_EQ(e.column(), 34);
+        EXPECT_NE(std::string(e.what()).find("bad.uff:14:34: record 12: not a number"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace sb::identification
