@@ -1,0 +1,283 @@
+// The RMS amplitude controller loop: settle, decide, update, fall back (paper 000 §3.2).
+#include "control/controller.hpp"
+
+#include <cmath>
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "control/update.hpp"
+#include "control/window.hpp"
+
+namespace sb::control {
+namespace {
+
+std::string join(const Violations& violations) {
+    std::string text = "invalid controller options:";
+    for (const auto& v : violations) {
+        text += "\n  " + v.key + " = " + v.value + ": " + v.constraint + " (" + v.meaning + ")";
+    }
+    return text;
+}
+
+/// Bookkeeping of one point: every period driven goes through here.
+class PointRecorder {
+  public:
+    PointRecorder(Plant& plant, double frequency_hz, double target_rms, PointResult& result)
+        : plant_(plant), frequency_hz_(frequency_hz), result_(result) {
+        result_.frequency_hz = frequency_hz;
+        result_.target_rms = target_rms;
+    }
+
+    double run(double amplitude) {
+        if (result_.amplitude_per_period.empty() ||
+            result_.amplitude_per_period.back() != amplitude) {
+            result_.amplitudes_tried.push_back(amplitude);
+        }
+        PeriodResult period = plant_.run_period(amplitude, frequency_hz_);
+        if (!(std::isfinite(period.rms) && period.rms >= 0.0)) {
+            throw std::runtime_error("control: plant reported RMS " + format_value(period.rms) +
+                                     " at period " + std::to_string(result_.periods_simulated) +
+                                     ", frequency " + format_value(frequency_hz_) +
+                                     " Hz, amplitude " + format_value(amplitude));
+        }
+        const double rms = period.rms;
+        result_.amplitude_per_period.push_back(amplitude);
+        result_.rms_per_period.push_back(rms);
+        result_.periods.push_back(std::move(period));
+        ++result_.periods_simulated;
+        return rms;
+    }
+
+  private:
+    Plant& plant_;
+    double frequency_hz_;
+    PointResult& result_;
+};
+
+bool closer(const std::optional<Sample>& best, const Sample& s, double target) {
+    return !best || std::abs(s.level - target) < std::abs(best->level - target);
+}
+
+}  // namespace
+
+std::string_view to_string(PointStatus status) {
+    switch (status) {
+        case PointStatus::kConverged:
+            return "converged";
+        case PointStatus::kLimitCycle2:
+            return "limit-cycle-2";
+        case PointStatus::kClosest:
+            return "closest";
+    }
+    return "unknown";
+}
+
+std::string_view to_string(DecisionKind kind) {
+    switch (kind) {
+        case DecisionKind::kSettled:
+            return "settled";
+        case DecisionKind::kLimitCycle2:
+            return "limit-cycle-2";
+        case DecisionKind::kEarlyLow:
+            return "early-low";
+        case DecisionKind::kEarlyHigh:
+            return "early-high";
+    }
+    return "unknown";
+}
+
+std::string_view to_string(UpdateRule rule) {
+    switch (rule) {
+        case UpdateRule::kNone:
+            return "none";
+        case UpdateRule::kRatio:
+            return "ratio";
+        case UpdateRule::kSecant:
+            return "secant";
+        case UpdateRule::kGradient:
+            return "gradient";
+    }
+    return "unknown";
+}
+
+std::vector<std::complex<double>> PointResult::window_harmonics() const {
+    std::vector<std::complex<double>> sum;
+    if (window_end <= window_begin) return sum;
+    for (int i = window_begin; i < window_end; ++i) {
+        const auto& h = periods[static_cast<std::size_t>(i)].harmonics;
+        if (sum.size() < h.size()) sum.resize(h.size());
+        for (std::size_t k = 0; k < h.size(); ++k) sum[k] += h[k];
+    }
+    const double count = static_cast<double>(window_end - window_begin);
+    for (auto& value : sum) value /= count;
+    return sum;
+}
+
+AmplitudeController::AmplitudeController(const ControllerOptions& options) : options_(options) {
+    const Violations violations = options_.validate();
+    if (!violations.empty()) throw std::invalid_argument(join(violations));
+}
+
+double AmplitudeController::start_amplitude(double target_rms) const {
+    if (forced_start_ > 0.0) return forced_start_;
+    if (previous_amplitude_ <= 0.0) return options_.initial_amplitude;
+    // Warm start: the previous amplitude scaled by the ratio the previous point would still
+    // have needed to reach this target.
+    return limit_step(previous_amplitude_,
+                      ratio_amplitude(previous_amplitude_, previous_rms_, target_rms), options_);
+}
+
+void AmplitudeController::set_start_amplitude(double amplitude) {
+    if (!(std::isfinite(amplitude) && amplitude > 0.0)) {
+        throw std::invalid_argument("set_start_amplitude: amplitude must be > 0, got " +
+                                    format_value(amplitude));
+    }
+    forced_start_ = amplitude;
+}
+
+void AmplitudeController::reset() {
+    previous_amplitude_ = 0.0;
+    previous_rms_ = 0.0;
+    forced_start_ = 0.0;
+}
+
+PointResult AmplitudeController::run_point(Plant& plant, double frequency_hz, double target_rms) {
+    if (!(std::isfinite(frequency_hz) && frequency_hz > 0.0)) {
+        throw std::invalid_argument("run_point: frequency_hz must be > 0, got " +
+                                    format_value(frequency_hz));
+    }
+    if (!(std::isfinite(target_rms) && target_rms > 0.0)) {
+        throw std::invalid_argument("run_point: target_rms must be > 0, got " +
+                                    format_value(target_rms));
+    }
+    const ControllerOptions& o = options_;
+    PointResult result;
+    PointRecorder recorder(plant, frequency_hz, target_rms, result);
+
+    double amplitude = start_amplitude(target_rms);
+    forced_start_ = 0.0;
+    std::vector<double> window;  // RMS since the last change, transient skipped; cleared at
+                                 // every change so no stale or unfilled value votes
+    int since_change = 0;        // periods at this amplitude (this frequency)
+    Bracket bracket;
+    std::optional<Sample> best;           // amplitude whose level came closest to the target
+    std::optional<Sample> last_measured;  // previous settled or two-period level
+    UpdateRule last_rule = UpdateRule::kNone;
+    bool accepted = false;
+
+    while (result.periods_simulated < o.max_periods) {
+        const double rms = recorder.run(amplitude);
+        if (++since_change <= o.transient_periods) continue;
+        window.push_back(rms);
+
+        const WindowVerdict verdict = assess_window(window, target_rms, o);
+        if (verdict.state == WindowState::kFilling) continue;
+        if (verdict.state == WindowState::kUnsettled) {
+            // Neither settled nor clearly off: its mean still ranks the amplitude for the
+            // closest fallback (a chaotic response never settles).
+            const std::size_t n = static_cast<std::size_t>(o.window_periods);
+            double sum = 0.0;
+            for (std::size_t i = window.size() - n; i < window.size(); ++i) sum += window[i];
+            const Sample s{amplitude, sum / static_cast<double>(n)};
+            if (closer(best, s, target_rms)) best = s;
+            continue;
+        }
+
+        Decision decision;
+        decision.period = result.periods_simulated - 1;
+        decision.amplitude = amplitude;
+        decision.level = verdict.level;
+        switch (verdict.state) {
+            case WindowState::kSettled:
+                decision.kind = DecisionKind::kSettled;
+                break;
+            case WindowState::kLimitCycle2:
+                decision.kind = DecisionKind::kLimitCycle2;
+                break;
+            case WindowState::kEarlyLow:
+                decision.kind = DecisionKind::kEarlyLow;
+                break;
+            default:
+                decision.kind = DecisionKind::kEarlyHigh;
+                break;
+        }
+        const Sample sample{amplitude, verdict.level};
+        if (closer(best, sample, target_rms)) best = sample;
+
+        const bool measured =
+            decision.kind == DecisionKind::kSettled || decision.kind == DecisionKind::kLimitCycle2;
+        if (measured && std::abs(verdict.level - target_rms) <= o.tolerance * target_rms) {
+            // Accepted, with or without an update at this point (a warm start already on
+            // target costs no extra settling cycle).
+            decision.rule = UpdateRule::kNone;
+            decision.next_amplitude = amplitude;
+            result.decisions.push_back(decision);
+            result.status = decision.kind == DecisionKind::kSettled ? PointStatus::kConverged
+                                                                    : PointStatus::kLimitCycle2;
+            result.amplitude_final = amplitude;
+            result.rms_final = verdict.level;
+            result.window_end = result.periods_simulated;
+            result.window_begin = result.window_end - verdict.count;
+            accepted = true;
+            break;
+        }
+
+        // Update: the secant through the widened bracket while the bracket holds, the ratio
+        // rule otherwise; a stalled secant (a sample improving neither side) restarts the
+        // bracket, and after max_restarts of those only the ratio rule is used.
+        if (!bracket.add(sample, target_rms)) ++result.restarts;
+        std::optional<double> proposed;
+        decision.rule = UpdateRule::kRatio;
+        if (result.restarts <= o.max_restarts) {
+            proposed = bracket.secant(target_rms, o);
+            if (proposed) decision.rule = UpdateRule::kSecant;
+        }
+        // The ratio rule stalls when the gain changes with the drive (a hardening response
+        // grows less than the drive): two measured levels on the same side, the newer one not
+        // even halfway closer (in log) than the older. Then follow the measured gradient.
+        if (!proposed && measured && last_measured && last_rule == UpdateRule::kRatio &&
+            (last_measured->level < target_rms) == (sample.level < target_rms) &&
+            std::abs(std::log(target_rms / sample.level)) >
+                0.5 * std::abs(std::log(target_rms / last_measured->level))) {
+            proposed = power_law_amplitude(*last_measured, sample, target_rms, o);
+            if (proposed) decision.rule = UpdateRule::kGradient;
+        }
+        if (!proposed) proposed = ratio_amplitude(amplitude, verdict.level, target_rms);
+        if (measured) last_measured = sample;
+        last_rule = decision.rule;
+        decision.next_amplitude = limit_step(amplitude, *proposed, o);
+        result.decisions.push_back(decision);
+        ++result.updates;
+
+        amplitude = decision.next_amplitude;
+        window.clear();
+        since_change = 0;
+    }
+
+    if (!accepted) {
+        // Budget spent: re-run the amplitude closest to the target and record those periods,
+        // not the last ones (HFelem printed the last period beside the best amplitude).
+        const double closest = best ? best->amplitude : amplitude;
+        if (closest != amplitude) {
+            for (int i = 0; i < o.transient_periods; ++i) recorder.run(closest);
+        }
+        result.window_begin = result.periods_simulated;
+        double sum = 0.0;
+        for (int i = 0; i < o.closest_rerun_periods; ++i) sum += recorder.run(closest);
+        result.window_end = result.periods_simulated;
+        result.status = PointStatus::kClosest;
+        result.amplitude_final = closest;
+        result.rms_final = sum / static_cast<double>(o.closest_rerun_periods);
+    }
+
+    previous_amplitude_ = result.amplitude_final;
+    previous_rms_ = result.rms_final;
+    return result;
+}
+
+}  // namespace sb::control
