@@ -5,6 +5,7 @@
 #include "bench/config_errors.hpp"
 #include "identify_command.hpp"
 #include "modes_command.hpp"
+#include "run_command.hpp"
 
 int main(int argc, char** argv) {
     CLI::App app{
@@ -19,6 +20,7 @@ int main(int argc, char** argv) {
         "command line).");
 
     int exit_code = 0;
+    sb::apps::register_run_command(app, exit_code);
     sb::apps::register_modes_command(app, exit_code);
     sb::apps::register_identify_command(app, exit_code);
 

@@ -1,12 +1,64 @@
 // Reading a campaign config file section by section.
 #include "bench/campaign_config.hpp"
 
+#include <algorithm>
+
+#include "bench/campaign_reader.hpp"
 #include "bench/config_reader.hpp"
 #include "bench/structure_config.hpp"
 #include "builtin_config.hpp"
 
 namespace sb::bench {
 namespace {
+
+/// Names a structure of this spec offers as points (beam: points and named masses; lumped:
+/// masses; matrix: the prefixes of named DOFs).
+std::vector<std::string> point_names(const structure::StructureSpec& spec) {
+    std::vector<std::string> names;
+    switch (spec.kind) {
+        case structure::StructureSpec::Kind::beam:
+            for (const auto& p : spec.beam.points) names.push_back(p.name);
+            for (const auto& m : spec.beam.masses) names.push_back(m.name);
+            for (const auto& s : spec.beam.supports) names.push_back(s.name);
+            break;
+        case structure::StructureSpec::Kind::lumped:
+            for (const auto& m : spec.lumped.masses) names.push_back(m.name);
+            break;
+        case structure::StructureSpec::Kind::matrix:
+            for (const auto& [dof, row] : spec.matrix.named_dofs) {
+                names.push_back(dof.substr(0, dof.rfind('.')));
+            }
+            break;
+    }
+    return names;
+}
+
+/// Every point the campaign refers to must exist in the structure.
+void check_points(const CampaignConfig& config, Section& campaign, Section& root) {
+    const auto names = point_names(config.structure);
+    const auto known = [&](const std::string& name) {
+        return std::find(names.begin(), names.end(), name) != names.end();
+    };
+    const bool runs = !config.campaign.levels_g.empty();
+    if (runs && !known(config.campaign.control_point)) {
+        campaign.error("control_point", "\"" + config.campaign.control_point + "\"",
+                       "must name a point of the structure", "the controlled point");
+    }
+    for (const auto& p : config.campaign.response_points) {
+        if (!known(p)) {
+            campaign.error("response_points", "\"" + p + "\"", "must name a point of the structure",
+                           "recorded points");
+        }
+    }
+    Section dampers = root.table("dampers", "particle dampers");
+    for (const auto& d : config.campaign.dampers) {
+        if (!known(d.point)) {
+            Section damper = dampers.table(d.name, "a damper");
+            damper.error("point", "\"" + d.point + "\"", "must name a point of the structure",
+                         "where the damper is attached");
+        }
+    }
+}
 
 CampaignConfig read_document(ConfigDocument document) {
     CampaignConfig config;
@@ -17,10 +69,11 @@ CampaignConfig read_document(ConfigDocument document) {
     Section campaign = root.table("campaign", "campaign identity");
     config.name = campaign.string("name", "campaign", "campaign name, used in output names");
     config.description = campaign.string("description", "", "free text");
-    campaign.finish();
-
     config.structure =
         read_structure(root.table("structure", "the structure under test"), config.base_dir);
+    config.campaign = read_campaign(root, campaign);
+    check_points(config, campaign, root);
+    campaign.finish();
     root.finish();
     document.diagnostics().throw_if_any();
     return config;

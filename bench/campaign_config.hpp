@@ -5,6 +5,7 @@
 #include <string>
 #include <string_view>
 
+#include "bench/campaign_spec.hpp"
 #include "structure/spec.hpp"
 
 namespace sb::bench {
@@ -14,6 +15,7 @@ struct CampaignConfig {
     std::string name;         ///< [campaign] name
     std::string description;  ///< [campaign] description
     structure::StructureSpec structure;
+    CampaignSpec campaign;           ///< levels, grid, arrangements, dampers, controller, output
     std::string source;              ///< file name (or "<built-in ...>") for messages
     std::filesystem::path base_dir;  ///< relative paths in the config resolve here
 };
@@ -25,8 +27,8 @@ CampaignConfig load_campaign_config(const std::filesystem::path& path);
 /// The same from text in memory; `name` stands for the file in messages.
 CampaignConfig load_campaign_config_text(std::string_view text, const std::string& name);
 
-/// The built-in default campaign (configs/paper000-beam.toml, compiled in).
+/// The built-in default campaign (configs/paper000-h0.toml, compiled in).
 std::string_view builtin_config_text();
-inline constexpr const char* kBuiltinConfigName = "<built-in configs/paper000-beam.toml>";
+inline constexpr const char* kBuiltinConfigName = "<built-in configs/paper000-h0.toml>";
 
 }  // namespace sb::bench

@@ -262,6 +262,28 @@ std::vector<double> Section::numbers(std::string_view key, std::string_view mean
     return out;
 }
 
+std::vector<std::string> Section::strings(std::string_view key, std::string_view meaning) {
+    const toml::node* n = lookup(key);
+    std::vector<std::string> out;
+    if (n == nullptr) {
+        return out;
+    }
+    const auto* array = n->as_array();
+    if (array == nullptr) {
+        wrong_type(key, *n, "an array of strings", meaning);
+        return out;
+    }
+    for (const auto& element : *array) {
+        if (const auto* text = element.as_string()) {
+            out.push_back(text->get());
+        } else {
+            diagnostics_->add(element.source(), key_path(key), node_text(element),
+                              "must be a string", std::string(meaning));
+        }
+    }
+    return out;
+}
+
 Eigen::Vector3d Section::vector3(std::string_view key, const Eigen::Vector3d& fallback,
                                  std::string_view meaning) {
     if (!has(key)) {

@@ -82,6 +82,7 @@ class Section {
     Eigen::Vector3d vector3(std::string_view key, const Eigen::Vector3d& fallback,
                             std::string_view meaning);
     std::vector<double> numbers(std::string_view key, std::string_view meaning);
+    std::vector<std::string> strings(std::string_view key, std::string_view meaning);
 
     /// A sub-table; absent gives a section with present() == false.
     Section table(std::string_view key, std::string_view meaning);

@@ -4,7 +4,7 @@ add_library(sb_warnings INTERFACE)
 add_library(sb::warnings ALIAS sb_warnings)
 target_compile_options(sb_warnings INTERFACE
   -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion -Wnon-virtual-dtor
-  -Wold-style-cast -Woverloaded-virtual -Wnull-dereference -Wdouble-promotion -Wformat=2
+  -Wold-style-cast -Woverloaded-virtual -Wdouble-promotion -Wformat=2
   $<$<BOOL:${SB_WARNINGS_AS_ERRORS}>:-Werror>)
 # g++ 12 reports -Wrestrict inside libstdc++ for ordinary std::string concatenation at -O2
 # (GCC bug 105329, fixed in 13); the warning says nothing about our code there.

@@ -10,6 +10,6 @@ cmake --build --preset release -j "$(nproc)"
 
 out="${1:-out/default}"
 mkdir -p "$out"
-# The main job: modal analysis of the built-in paper-000 beam (the stepped-sine campaign
-# takes its place once the campaign orchestrator lands).
-build/release/apps/shakerbench modes --out "$out"
+# The main job: the built-in paper-000 H-0 campaign (a few minutes on two cores). Run it
+# again to resume an interrupted run.
+build/release/apps/shakerbench run --out "$out"

@@ -1,6 +1,8 @@
 // End-to-end checks of the shakerbench executable: exit codes and messages users see.
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cmath>
@@ -9,37 +11,15 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <sstream>
 #include <string>
+#include <thread>
+
+#include "cli_helpers.hpp"
 
 namespace {
 
-struct Result {
-    int exit_code = -1;
-    std::string output;  // stdout and stderr together
-};
-
-Result run(const std::string& arguments) {
-    const std::string command = std::string(SB_CLI) + " " + arguments + " 2>&1";
-    Result result;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (pipe == nullptr) {
-        return result;
-    }
-    std::array<char, 4096> buffer{};
-    while (fgets(buffer.data(), static_cast<int>(buffer.size()), pipe) != nullptr) {
-        result.output += buffer.data();
-    }
-    const int status = pclose(pipe);
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return result;
-}
-
-std::filesystem::path temp_dir(const std::string& name) {
-    auto dir = std::filesystem::temp_directory_path() / ("shakerbench-cli-" + name);
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-    return dir;
-}
+using namespace sb::test;
 
 TEST(Cli, HelpListsTheSubcommandsAndExitsZero) {
     const auto r = run("--help");
@@ -82,7 +62,7 @@ TEST(Cli, ModesOnTheBuiltInBeamPrintsTheFirstModeAndWritesShapes) {
     const auto r = run("modes --out " + dir.string());
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("frequency [Hz]"), std::string::npos) << r.output;
-    EXPECT_TRUE(std::filesystem::exists(dir / "paper000-beam-modes.csv"));
+    EXPECT_TRUE(std::filesystem::exists(dir / "paper000-h0-modes.csv"));
 }
 
 /// A recording directory of an exact SDOF accelerance (m, f_n, zeta) around its resonance.

@@ -1,0 +1,93 @@
+// `shakerbench run`: runs or resumes a campaign and writes its recording directory.
+#include "run_command.hpp"
+
+#include <iomanip>
+#include <iostream>
+#include <memory>
+
+#include "bench/campaign.hpp"
+#include "bench/config_errors.hpp"
+#include "bench/sweep_checkpoint.hpp"
+#include "dem/solver.hpp"
+#include "identification/file_error.hpp"
+#include "load_config.hpp"
+
+namespace sb::apps {
+namespace {
+
+struct RunOptions {
+    std::string config;
+    std::string out_dir;
+    int threads = 0;
+    bool quiet = false;
+    std::string command_line;
+};
+
+int run(const RunOptions& options) {
+    int exit_code = 0;
+    const auto config = load_config_or_report(options.config, exit_code);
+    if (!config) {
+        return exit_code;
+    }
+    bench::CampaignRunOptions run;
+    run.out_dir = options.out_dir.empty() ? std::filesystem::path("out") / config->name
+                                          : std::filesystem::path(options.out_dir);
+    run.threads = options.threads;
+    run.progress = options.quiet ? nullptr : &std::cerr;
+    run.config_text = options.config.empty() ? std::string(bench::builtin_config_text())
+                                             : bench::read_file(options.config);
+    run.command_line = options.command_line;
+    try {
+        const auto summary = bench::run_campaign(*config, run);
+        std::cout << "campaign " << config->name << ": " << summary.points << " points ("
+                  << summary.converged << " converged, " << summary.limit_cycle
+                  << " limit-cycle-2, " << summary.closest << " closest; " << summary.resumed_points
+                  << " taken from checkpoints), " << summary.periods_simulated
+                  << " periods simulated in " << std::fixed << std::setprecision(1)
+                  << summary.wall_time_s << " s\n"
+                  << "recording: " << run.out_dir.string() << '\n';
+        return 0;
+    } catch (const bench::ConfigException& e) {
+        std::cerr << e.what() << "\nshakerbench run: the config cannot run a campaign.\n";
+        return bench::kExitBadInput;
+    } catch (const identification::FileError& e) {
+        std::cerr << "shakerbench run: " << e.what() << '\n';
+        return bench::kExitBadInput;
+    } catch (const dem::SimulationError& e) {
+        std::cerr << "shakerbench run: simulation failed: " << e.what()
+                  << "\nFinished points are kept in " << run.out_dir.string()
+                  << "/checkpoints; fix the config and run again to resume.\n";
+        return bench::kExitFailure;
+    } catch (const std::exception& e) {
+        std::cerr << "shakerbench run: " << e.what() << '\n';
+        return bench::kExitFailure;
+    }
+}
+
+}  // namespace
+
+void register_run_command(CLI::App& app, int& exit_code) {
+    auto options = std::make_shared<RunOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "run",
+        "Run the stepped-sine campaign of CONFIG (default: the built-in paper-000 H-0 "
+        "campaign) into a recording directory. An interrupted run resumes from its "
+        "checkpoints when run again with the same output directory.");
+    cmd->add_option("config", options->config, "campaign config (TOML)");
+    cmd->add_option("-o,--out", options->out_dir,
+                    "recording directory (default: out/<campaign name>)");
+    cmd->add_option("-j,--threads", options->threads, "sweeps run in parallel (default: all cores)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_flag("-q,--quiet", options->quiet, "no progress lines");
+    cmd->callback([options, &exit_code] {
+        options->command_line = "shakerbench run";
+        if (!options->config.empty()) options->command_line += " " + options->config;
+        if (!options->out_dir.empty()) options->command_line += " --out " + options->out_dir;
+        if (options->threads > 0) {
+            options->command_line += " --threads " + std::to_string(options->threads);
+        }
+        exit_code = run(*options);
+    });
+}
+
+}  // namespace sb::apps

@@ -1,0 +1,111 @@
+// The coupled specimen as the controller's plant.
+#include "bench/specimen_plant.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "core/units.hpp"
+#include "identification/harmonics.hpp"
+
+namespace sb::bench {
+
+SpecimenPlant::SpecimenPlant(CoupledSpecimen& specimen, int series_samples_per_period)
+    : specimen_(&specimen), series_samples_per_period_(series_samples_per_period) {}
+
+control::PeriodResult SpecimenPlant::run_period(double amplitude, double frequency_hz) {
+    if (frequency_hz != specimen_->frequency_hz()) {
+        specimen_->set_frequency(frequency_hz);
+    }
+    const int n = specimen_->steps_per_period();
+    const std::size_t channels = specimen_->channel_names().size();
+    samples_.resize(channels);
+    for (auto& s : samples_) {
+        s.assign(static_cast<std::size_t>(n), 0.0);
+    }
+    for (int k = 0; k < n; ++k) {
+        specimen_->step(amplitude, values_);
+        for (std::size_t c = 0; c < channels; ++c) {
+            samples_[c][static_cast<std::size_t>(k)] = values_[c];
+        }
+    }
+    steps_run_ += n;
+
+    // Every period starts at phase 0 of the point's sine, so the sample k (end of step k) is
+    // at time (k + 1) dt of the period: X = (2/N) sum x_k e^{-i w t_k} is the exact
+    // fundamental of a signal sampled over one whole period.
+    PeriodChannels period;
+    period.mean.resize(channels);
+    period.mean_square.resize(channels);
+    period.fundamental.resize(channels);
+    const double w_dt = kTwoPi / n;
+    std::vector<std::complex<double>> phasor(static_cast<std::size_t>(n));
+    for (int k = 0; k < n; ++k) {
+        phasor[static_cast<std::size_t>(k)] = std::polar(1.0, -w_dt * (k + 1));
+    }
+    for (std::size_t c = 0; c < channels; ++c) {
+        const auto& x = samples_[c];
+        double sum = 0.0;
+        std::complex<double> acc = 0.0;
+        for (int k = 0; k < n; ++k) {
+            sum += x[static_cast<std::size_t>(k)];
+            acc += x[static_cast<std::size_t>(k)] * phasor[static_cast<std::size_t>(k)];
+        }
+        const double mean = sum / n;
+        double ms = 0.0;
+        for (double v : x) {
+            ms += (v - mean) * (v - mean);
+        }
+        period.mean[c] = mean;
+        period.mean_square[c] = ms / n;
+        period.fundamental[c] = 2.0 / n * acc;
+        if (series_samples_per_period_ > 0) {
+            const int stride = std::max(1, n / series_samples_per_period_);
+            std::vector<double> kept;
+            for (int k = stride - 1; k < n; k += stride) {
+                kept.push_back(x[static_cast<std::size_t>(k)]);
+            }
+            period.series.push_back(std::move(kept));
+        }
+    }
+
+    control::PeriodResult result;
+    result.rms = std::sqrt(period.mean_square[1]);
+    // Harmonics 1..10 of the control channel (FFTW, identification/harmonics): the distortion
+    // the particles add is part of what a point records.
+    const auto analysis = identification::analyse_harmonics(samples_[1], 1.0 / specimen_->dt_s(),
+                                                            specimen_->frequency_hz(), 10);
+    result.harmonics.assign(analysis.amplitude.begin() + 1, analysis.amplitude.end());
+    periods_.push_back(std::move(period));
+    return result;
+}
+
+WindowChannels SpecimenPlant::window(int begin, int end) const {
+    if (begin < 0 || end > static_cast<int>(periods_.size()) || begin >= end) {
+        throw std::out_of_range("specimen plant: window [" + std::to_string(begin) + ", " +
+                                std::to_string(end) + ") outside the " +
+                                std::to_string(periods_.size()) + " periods of the point");
+    }
+    const std::size_t channels = periods_.front().mean.size();
+    const double count = end - begin;
+    WindowChannels out;
+    out.rms.assign(channels, 0.0);
+    out.fundamental.assign(channels, 0.0);
+    for (std::size_t c = 0; c < channels; ++c) {
+        double mean = 0.0;
+        for (int p = begin; p < end; ++p) {
+            mean += periods_[static_cast<std::size_t>(p)].mean[c] / count;
+        }
+        // Window mean square about the window mean, from the periods' own means and spreads.
+        double ms = 0.0;
+        for (int p = begin; p < end; ++p) {
+            const auto& period = periods_[static_cast<std::size_t>(p)];
+            const double offset = period.mean[c] - mean;
+            ms += (period.mean_square[c] + offset * offset) / count;
+            out.fundamental[c] += period.fundamental[c] / count;
+        }
+        out.rms[c] = std::sqrt(ms);
+    }
+    return out;
+}
+
+}  // namespace sb::bench

@@ -1,0 +1,51 @@
+// The coupled specimen as the controller's plant: one call = one period of the stepped sine.
+#pragma once
+
+#include <complex>
+#include <vector>
+
+#include "bench/coupled_specimen.hpp"
+#include "control/plant.hpp"
+
+namespace sb::bench {
+
+/// What one period gave on every channel.
+struct PeriodChannels {
+    std::vector<double> mean;                       ///< per channel
+    std::vector<double> mean_square;                ///< per channel, mean removed
+    std::vector<std::complex<double>> fundamental;  ///< per channel, x = Re{X e^{i w t}}
+    std::vector<std::vector<double>> series;        ///< decimated samples, per channel
+};
+
+/// Channel values over a window of periods.
+struct WindowChannels {
+    std::vector<double> rms;                        ///< mean removed over the window
+    std::vector<std::complex<double>> fundamental;  ///< mean of the periods' phasors
+};
+
+class SpecimenPlant : public control::Plant {
+  public:
+    /// `series_samples_per_period` > 0 keeps that many samples of every period.
+    SpecimenPlant(CoupledSpecimen& specimen, int series_samples_per_period);
+
+    /// Runs one period at `amplitude`; the first call at a new frequency switches the
+    /// specimen's time step. Reports the control channel (the first acceleration channel).
+    control::PeriodResult run_period(double amplitude, double frequency_hz) override;
+
+    /// Forgets the periods of the previous point.
+    void begin_point() { periods_.clear(); }
+    [[nodiscard]] const std::vector<PeriodChannels>& periods() const { return periods_; }
+    /// Steady values over periods [begin, end) of the current point.
+    [[nodiscard]] WindowChannels window(int begin, int end) const;
+    [[nodiscard]] long long steps_run() const { return steps_run_; }
+
+  private:
+    CoupledSpecimen* specimen_;
+    int series_samples_per_period_;
+    std::vector<PeriodChannels> periods_;
+    std::vector<double> values_;
+    std::vector<std::vector<double>> samples_;
+    long long steps_run_ = 0;
+};
+
+}  // namespace sb::bench

@@ -1,0 +1,131 @@
+// Contact law composition and the restitution-to-damping relations.
+#include "dem/contact_law.hpp"
+
+#include <cmath>
+
+#include "core/units.hpp"
+
+namespace sb::dem {
+
+std::string ContactLaw::describe() const {
+    std::string s = "normal=";
+    s += std::visit([](const auto& p) { return std::string(p.kName); }, normal);
+    s += " damping=";
+    s += std::visit([](const auto& p) { return std::string(p.kName); }, damping);
+    s += " tangential=";
+    s += std::visit([](const auto& p) { return std::string(p.kName); }, tangential);
+    s += " rolling=";
+    s += std::visit([](const auto& p) { return std::string(p.kName); }, rolling);
+    return s;
+}
+
+ContactLaw make_contact_law(const ContactOptions& o, Violations& violations) {
+    const Violations v = o.validate();
+    violations.insert(violations.end(), v.begin(), v.end());
+    ContactLaw law;
+    if (o.normal == NormalLaw::hooke) {
+        law.normal = Hooke{};
+    } else {
+        law.normal = Hertz{};
+    }
+    switch (o.damping) {
+        case DampingLaw::none:
+            law.damping = NoDamping{};
+            break;
+        case DampingLaw::linear_dashpot:
+            law.damping = LinearDashpot{};
+            break;
+        case DampingLaw::hertz_dashpot:
+            law.damping = HertzDashpot{};
+            break;
+        case DampingLaw::restitution:
+            if (o.normal == NormalLaw::hooke) {
+                law.damping = LinearDashpot{};
+            } else {
+                law.damping = HertzDashpot{};
+            }
+            break;
+    }
+    switch (o.tangential) {
+        case TangentialLaw::none:
+            law.tangential = NoFriction{};
+            break;
+        case TangentialLaw::directional_coulomb:
+            law.tangential = DirectionalCoulomb{};
+            break;
+        case TangentialLaw::coulomb_spring:
+            law.tangential = CoulombSpring{};
+            break;
+    }
+    if (o.rolling == RollingLaw::none) {
+        law.rolling = NoRolling{};
+    } else {
+        law.rolling = ConstantRollingTorque{};
+    }
+    return law;
+}
+
+double linear_restitution_from_zeta(double zeta) {
+    // No tensile force: the pair separates when k x + c x' = 0, at omega t* = pi - phi with
+    // tan phi = 2 zeta sqrt(1 - zeta^2) / (1 - 2 zeta^2), and e = exp(-beta t*)
+    // (Schwager & Poeschel, Phys. Rev. E 75, 051304, 2007, eq. 22).
+    if (zeta <= 0.0) return 1.0;
+    if (zeta >= 1.0) return 0.0;
+    const double s = std::sqrt(1.0 - zeta * zeta);
+    const double phi = std::atan2(2.0 * zeta * s, 1.0 - 2.0 * zeta * zeta);
+    return std::exp(-zeta / s * (kPi - phi));
+}
+
+double linear_zeta_from_restitution(double e) {
+    if (e >= 1.0) return 0.0;
+    // Start from the closed form without the clamp, -ln e / sqrt(pi^2 + ln^2 e), then solve
+    // the exact clamped relation by bisection (it is monotonic in zeta).
+    double lo = 0.0, hi = 1.0;
+    for (int it = 0; it < 100; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        if (linear_restitution_from_zeta(mid) > e) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    return 0.5 * (lo + hi);
+}
+
+double hertz_restitution_from_alpha(double alpha) {
+    // Dimensionless impact: m = k = v0 = 1, x'' = -max(0, x^1.5 + alpha x^0.25 x'), RK4 with
+    // a step far below the contact time (about 3.2); ends when the force vanishes (no tension).
+    double x = 0.0, v = 1.0;
+    const double h = 2e-4;
+    auto acc = [alpha](double xx, double vv) {
+        if (xx <= 0.0) return 0.0;
+        const double f = xx * std::sqrt(xx) + alpha * std::sqrt(std::sqrt(xx)) * vv;
+        return -std::max(0.0, f);
+    };
+    for (int it = 0; it < 1000000; ++it) {
+        const double k1x = v, k1v = acc(x, v);
+        const double k2x = v + 0.5 * h * k1v, k2v = acc(x + 0.5 * h * k1x, v + 0.5 * h * k1v);
+        const double k3x = v + 0.5 * h * k2v, k3v = acc(x + 0.5 * h * k2x, v + 0.5 * h * k2v);
+        const double k4x = v + h * k3v, k4v = acc(x + h * k3x, v + h * k3v);
+        x += h / 6.0 * (k1x + 2 * k2x + 2 * k3x + k4x);
+        v += h / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
+        if (v < 0.0 && (x <= 0.0 || acc(x, v) == 0.0)) break;
+    }
+    return -v;
+}
+
+double hertz_alpha_from_restitution(double e) {
+    if (e >= 1.0) return 0.0;
+    double lo = 0.0, hi = 10.0;  // e(alpha) decreases monotonically
+    for (int it = 0; it < 50; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        if (hertz_restitution_from_alpha(mid) > e) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    return 0.5 * (lo + hi);
+}
+
+}  // namespace sb::dem

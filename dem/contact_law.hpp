@@ -1,0 +1,212 @@
+// Contact law pieces in fixed slots (normal, damping, tangential, rolling), composed at
+// compile time: one std::variant per slot, visited once per force evaluation (style.md).
+#pragma once
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <variant>
+
+#include "dem/options.hpp"
+
+namespace sb::dem {
+
+/// Kinematics of one contact, as seen from particle i (j is a particle or a wall).
+struct ContactKinematics {
+    double delta = 0.0;                  ///< overlap [m], > 0 in contact
+    double delta_dot = 0.0;              ///< overlap rate [m/s], > 0 approaching
+    Eigen::Vector3d n{0, 0, 1};          ///< unit normal from j towards i
+    Eigen::Vector3d v_t{0, 0, 0};        ///< slip velocity of i relative to j at the contact [m/s]
+    Eigen::Vector3d omega_rel{0, 0, 0};  ///< omega_i - omega_j [rad/s]
+    double m_eff = 0.0;                  ///< effective mass [kg]
+    double r_eff = 0.0;                  ///< effective radius [m]
+    double m_t = 0.0;                    ///< effective tangential mass at the contact point [kg]
+    double i_eff = 0.0;                  ///< effective rolling inertia [kg m^2]
+    double dt = 0.0;                     ///< time step [s]
+};
+
+/// Coefficients of one pair type, derived once at set-up.
+struct PairCoefficients {
+    double k_n = 0.0;                 ///< Hooke [N/m] or Hertz [N/m^1.5] (if > 0; else from e_star)
+    double e_star_sqrt_factor = 0.0;  ///< Hertz from materials: k = 4/3 E* sqrt(R*) [Pa]
+    double damping = 0.0;             ///< zeta (linear) or alpha (Hertz), dimensionless
+    double mu = 0.0;                  ///< sliding friction [-]
+    double mu_r = 0.0;                ///< rolling friction [-]
+    double kt_ratio = 2.0 / 7.0;      ///< tangential / normal stiffness [-]
+    double slip_reg = 1e-4;           ///< regularisation speed [m/s]
+};
+
+/// What the normal piece returns.
+struct NormalResult {
+    double f_spring = 0.0;  ///< elastic force [N], >= 0
+    double k_linear = 0.0;  ///< tangent-like stiffness for damping and the tangential spring
+                            ///< [N/m]: k (Hooke), k sqrt(delta) (Hertz)
+    double k_law = 0.0;     ///< the law's constant [N/m or N/m^1.5]
+};
+
+// ---------------------------------------------------------------- normal slot
+
+/// Linear spring: F = k delta.
+struct Hooke {
+    static constexpr const char* kName = "hooke";
+    NormalResult evaluate(const ContactKinematics& c, const PairCoefficients& p) const {
+        return {p.k_n * c.delta, p.k_n, p.k_n};
+    }
+    /// Stored elastic energy k delta^2 / 2 [J].
+    static double energy(double k, double delta) { return 0.5 * k * delta * delta; }
+};
+
+/// Hertz: F = k delta^{3/2}, k = 4/3 E* sqrt(R*) (paper 004 eqs. 3-4; Johnson 1985).
+struct Hertz {
+    static constexpr const char* kName = "hertz";
+    NormalResult evaluate(const ContactKinematics& c, const PairCoefficients& p) const {
+        const double k = p.k_n > 0.0 ? p.k_n : p.e_star_sqrt_factor * std::sqrt(c.r_eff);
+        const double sd = std::sqrt(c.delta);
+        return {k * c.delta * sd, k * sd, k};
+    }
+    /// Stored elastic energy 2/5 k delta^{5/2} [J].
+    static double energy(double k, double delta) {
+        return 0.4 * k * delta * delta * std::sqrt(delta);
+    }
+};
+
+// --------------------------------------------------------------- damping slot
+
+struct NoDamping {
+    static constexpr const char* kName = "none";
+    double evaluate(const ContactKinematics&, const PairCoefficients&, const NormalResult&) const {
+        return 0.0;
+    }
+};
+
+/// Linear dashpot F_d = 2 zeta sqrt(k m*) delta_dot, zeta from the restitution by the exact
+/// closed form of the spring-dashpot without tensile force (Schwager & Poeschel, PRE 2007).
+struct LinearDashpot {
+    static constexpr const char* kName = "linear_dashpot";
+    double evaluate(const ContactKinematics& c, const PairCoefficients& p,
+                    const NormalResult& nr) const {
+        return 2.0 * p.damping * std::sqrt(nr.k_law * c.m_eff) * c.delta_dot;
+    }
+};
+
+/// Hertz dashpot F_d = alpha sqrt(m* k) delta^{1/4} delta_dot (Tsuji, Tanaka & Ishida,
+/// Powder Technol. 71, 1992; paper 004 eq. 3): the restitution depends on alpha only; alpha(e)
+/// is solved once at set-up (hertz_alpha_from_restitution), cf. Antypov & Elliott, EPL 2011.
+struct HertzDashpot {
+    static constexpr const char* kName = "hertz_dashpot";
+    double evaluate(const ContactKinematics& c, const PairCoefficients& p,
+                    const NormalResult& nr) const {
+        return p.damping * std::sqrt(c.m_eff * nr.k_law) * std::sqrt(std::sqrt(c.delta)) *
+               c.delta_dot;
+    }
+};
+
+// ------------------------------------------------------------ tangential slot
+
+struct NoFriction {
+    static constexpr const char* kName = "none";
+    static constexpr bool kHasHistory = false;
+    Eigen::Vector3d evaluate(const ContactKinematics&, const PairCoefficients&, double,
+                             const NormalResult&, Eigen::Vector3d&) const {
+        return Eigen::Vector3d::Zero();
+    }
+};
+
+/// Stateless directional Coulomb friction F_t = -mu F_n t_hat, t_hat = v_t/|v_t| (papers
+/// 000, 001 eq. 2), ramped linearly below slip_reg and capped so that the slip of the pair
+/// is not reversed within one step (|F_t| <= m_t |v_t| / (2 dt)).
+struct DirectionalCoulomb {
+    static constexpr const char* kName = "directional_coulomb";
+    static constexpr bool kHasHistory = false;
+    Eigen::Vector3d evaluate(const ContactKinematics& c, const PairCoefficients& p, double f_n,
+                             const NormalResult&, Eigen::Vector3d&) const {
+        const double s = c.v_t.norm();
+        if (s <= 0.0) return Eigen::Vector3d::Zero();
+        double f = p.mu * f_n * std::min(1.0, s / p.slip_reg);
+        f = std::min(f, 0.5 * c.m_t * s / c.dt);
+        return (-f / s) * c.v_t;
+    }
+};
+
+/// History spring capped by Coulomb (static friction; Cundall & Strack 1979, LAMMPS
+/// linear_history): xi is projected onto the current tangent plane keeping its length
+/// (rotation with the pair), then xi += v_t dt, F_t = -k_t xi, |F_t| <= mu F_n with xi reset
+/// to -F_t/k_t on slip.
+struct CoulombSpring {
+    static constexpr const char* kName = "coulomb_spring";
+    static constexpr bool kHasHistory = true;
+    Eigen::Vector3d evaluate(const ContactKinematics& c, const PairCoefficients& p, double f_n,
+                             const NormalResult& nr, Eigen::Vector3d& xi) const {
+        const double len = xi.norm();
+        if (len > 0.0) {
+            xi -= c.n * c.n.dot(xi);
+            const double len2 = xi.norm();
+            xi *= len2 > 0.0 ? len / len2 : 0.0;
+        }
+        xi += c.v_t * c.dt;
+        const double kt = p.kt_ratio * nr.k_linear;
+        Eigen::Vector3d f = -kt * xi;
+        const double fmax = p.mu * f_n;
+        const double fm = f.norm();
+        if (fm > fmax) {
+            f *= fmax / fm;
+            xi = kt > 0.0 ? Eigen::Vector3d(-f / kt) : Eigen::Vector3d::Zero();
+        }
+        return f;
+    }
+};
+
+// --------------------------------------------------------------- rolling slot
+
+struct NoRolling {
+    static constexpr const char* kName = "none";
+    Eigen::Vector3d evaluate(const ContactKinematics&, const PairCoefficients&, double) const {
+        return Eigen::Vector3d::Zero();
+    }
+};
+
+/// Constant rolling torque M = -mu_r R* F_n w_hat opposing the relative rolling angular
+/// velocity w (tangential part of omega_i - omega_j) (paper 000 rolling friction; Zhou et
+/// al., Physica A 1999, model A), capped so that w is not reversed within one step.
+struct ConstantRollingTorque {
+    static constexpr const char* kName = "constant_torque";
+    Eigen::Vector3d evaluate(const ContactKinematics& c, const PairCoefficients& p,
+                             double f_n) const {
+        const Eigen::Vector3d w = c.omega_rel - c.n * c.n.dot(c.omega_rel);
+        const double s = w.norm();
+        if (s <= 0.0) return Eigen::Vector3d::Zero();
+        double m = p.mu_r * c.r_eff * f_n;
+        m = std::min(m, 0.5 * c.i_eff * s / c.dt);
+        return (-m / s) * w;
+    }
+};
+
+using NormalPiece = std::variant<Hooke, Hertz>;
+using DampingPiece = std::variant<NoDamping, LinearDashpot, HertzDashpot>;
+using TangentialPiece = std::variant<NoFriction, DirectionalCoulomb, CoulombSpring>;
+using RollingPiece = std::variant<NoRolling, ConstantRollingTorque>;
+
+/// A composed contact law.
+struct ContactLaw {
+    NormalPiece normal{};
+    DampingPiece damping{};
+    TangentialPiece tangential{};
+    RollingPiece rolling{};
+    std::string describe() const;
+};
+
+/// Builds the law from options; incompatible pieces are reported as violations naming both.
+ContactLaw make_contact_law(const ContactOptions& options, Violations& violations);
+
+/// Restitution of the linear spring-dashpot with damping ratio zeta and no tensile force.
+double linear_restitution_from_zeta(double zeta);
+/// zeta of the linear dashpot giving restitution e with no tensile force (inverts the closed
+/// form of linear_restitution_from_zeta; without the clamp it would be -ln e/sqrt(pi^2+ln^2 e)).
+double linear_zeta_from_restitution(double e);
+/// alpha of the Hertz dashpot giving restitution e (solved numerically, no tensile force).
+double hertz_alpha_from_restitution(double e);
+/// Restitution of the Hertz dashpot law with alpha, integrated numerically (for tests).
+double hertz_restitution_from_alpha(double alpha);
+
+}  // namespace sb::dem

@@ -1,0 +1,169 @@
+// Rigid enclosure geometry in its own frame (cylinder or box, rods, plates) and its motion.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "dem/options.hpp"
+
+namespace sb::dem {
+
+/// Pose and rigid-body velocity of the enclosure, world (structure) frame.
+struct EnclosureState {
+    Eigen::Vector3d position_m = Eigen::Vector3d::Zero();              ///< frame origin [m]
+    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();            ///< local -> world
+    Eigen::Vector3d velocity_m_s = Eigen::Vector3d::Zero();            ///< of the origin [m/s]
+    Eigen::Vector3d angular_velocity_rad_s = Eigen::Vector3d::Zero();  ///< world [rad/s]
+
+    /// Wall velocity at world point x: v + omega x (x - x_c) [m/s].
+    Eigen::Vector3d velocity_at(const Eigen::Vector3d& x) const {
+        return velocity_m_s + angular_velocity_rad_s.cross(x - position_m);
+    }
+    Eigen::Vector3d to_local(const Eigen::Vector3d& x) const {
+        const Eigen::Vector3d d = x - position_m;  // R^T d, written out so that it inlines
+        return {rotation.col(0).dot(d), rotation.col(1).dot(d), rotation.col(2).dot(d)};
+    }
+    Eigen::Vector3d to_world(const Eigen::Vector3d& xl) const {
+        return position_m + rotation.col(0) * xl.x() + rotation.col(1) * xl.y() +
+               rotation.col(2) * xl.z();
+    }
+    /// A local direction in world coordinates.
+    Eigen::Vector3d rotate(const Eigen::Vector3d& nl) const {
+        return rotation.col(0) * nl.x() + rotation.col(1) * nl.y() + rotation.col(2) * nl.z();
+    }
+};
+
+/// Geometry queries in the enclosure frame.
+class Enclosure {
+  public:
+    explicit Enclosure(const EnclosureOptions& options);
+
+    const EnclosureOptions& options() const { return options_; }
+    /// Axis-aligned bounds of the cavity [m].
+    const Eigen::Vector3d& lower() const { return lo_; }
+    const Eigen::Vector3d& upper() const { return hi_; }
+    /// Cavity volume without obstacles [m^3].
+    double volume() const;
+    /// True if the centre xl lies inside the cavity (walls only).
+    bool contains(const Eigen::Vector3d& xl) const {
+        if (xl.z() < lo_.z() || xl.z() > hi_.z()) return false;
+        if (options_.shape == EnclosureShape::cylinder) {
+            return xl.x() * xl.x() + xl.y() * xl.y() <= radius_ * radius_;
+        }
+        return xl.x() >= lo_.x() && xl.x() <= hi_.x() && xl.y() >= lo_.y() && xl.y() <= hi_.y();
+    }
+    /// Shortest distance from xl to the walls and obstacles (negative if inside a solid) [m].
+    double clearance(const Eigen::Vector3d& xl) const;
+
+    /// Calls emit(wall_id, n_local, delta) for each wall or obstacle the sphere (xl, r)
+    /// overlaps; n points from the wall into the cavity (towards the sphere centre).
+    template <class Emit>
+    void for_each_contact(const Eigen::Vector3d& xl, double r, Emit&& emit) const;
+
+  private:
+    template <class Emit>
+    void rods_contacts(const Eigen::Vector3d& xl, double r, Emit& emit) const;
+
+    EnclosureOptions options_;
+    Eigen::Vector3d lo_, hi_;
+    double radius_ = 0.0;
+    int rod_lo_[3]{0, 0, 0}, rod_hi_[3]{-1, -1, -1};  ///< lattice index range per axis
+};
+
+/// Wall ids: cylinder side 0, bottom 1, top 2; box faces 0..5 (-x,+x,-y,+y,bottom,top);
+/// plates from kPlateBase; rods from kRodBase.
+inline constexpr std::uint32_t kPlateBase = 16;
+inline constexpr std::uint32_t kRodBase = 1u << 16;
+
+template <class Emit>
+void Enclosure::for_each_contact(const Eigen::Vector3d& xl, double r, Emit&& emit) const {
+    if (options_.shape == EnclosureShape::cylinder) {
+        const double rho = std::sqrt(xl.x() * xl.x() + xl.y() * xl.y());
+        const double d = rho + r - radius_;
+        if (d > 0.0) {
+            Eigen::Vector3d n = rho > 0.0 ? Eigen::Vector3d(-xl.x() / rho, -xl.y() / rho, 0.0)
+                                          : Eigen::Vector3d(-1.0, 0.0, 0.0);
+            emit(0u, n, d);
+        }
+        if (xl.z() - r < lo_.z()) emit(1u, Eigen::Vector3d(0, 0, 1), lo_.z() - (xl.z() - r));
+        if (xl.z() + r > hi_.z()) emit(2u, Eigen::Vector3d(0, 0, -1), xl.z() + r - hi_.z());
+    } else {
+        for (int a = 0; a < 3; ++a) {
+            if (xl[a] - r < lo_[a]) {
+                Eigen::Vector3d n = Eigen::Vector3d::Zero();
+                n[a] = 1.0;
+                emit(static_cast<std::uint32_t>(2 * a), n, lo_[a] - (xl[a] - r));
+            }
+            if (xl[a] + r > hi_[a]) {
+                Eigen::Vector3d n = Eigen::Vector3d::Zero();
+                n[a] = -1.0;
+                emit(static_cast<std::uint32_t>(2 * a + 1), n, xl[a] + r - hi_[a]);
+            }
+        }
+    }
+    for (std::size_t p = 0; p < options_.plates.size(); ++p) {
+        const auto& pl = options_.plates[p];
+        const Eigen::Vector3d q = xl.cwiseMax(pl.min_corner_m).cwiseMin(pl.max_corner_m);
+        const Eigen::Vector3d d = xl - q;
+        const double dist = d.norm();
+        if (dist >= r) continue;
+        Eigen::Vector3d n;
+        double delta;
+        if (dist > 0.0) {
+            n = d / dist;
+            delta = r - dist;
+        } else {  // centre inside the solid: push out through the nearest face
+            double best = 1e300;
+            n = Eigen::Vector3d(0, 0, 1);
+            for (int a = 0; a < 3; ++a) {
+                const double dl = xl[a] - pl.min_corner_m[a], dh = pl.max_corner_m[a] - xl[a];
+                if (dl < best) {
+                    best = dl;
+                    n = Eigen::Vector3d::Zero();
+                    n[a] = -1.0;
+                }
+                if (dh < best) {
+                    best = dh;
+                    n = Eigen::Vector3d::Zero();
+                    n[a] = 1.0;
+                }
+            }
+            delta = r + best;
+        }
+        emit(kPlateBase + static_cast<std::uint32_t>(p), n, delta);
+    }
+    if (options_.rods.enabled) rods_contacts(xl, r, emit);
+}
+
+template <class Emit>
+void Enclosure::rods_contacts(const Eigen::Vector3d& xl, double r, Emit& emit) const {
+    const auto& g = options_.rods;
+    const double rr = 0.5 * g.rod_diameter_m;
+    const double s = g.cell_size_m;
+    // Rods along axis a sit at lattice nodes of the two other axes; the nearest line per axis
+    // is the only candidate because validate() demands d_particle + d_rod <= cell size.
+    for (int a = 0; a < 3; ++a) {
+        const int b = (a + 1) % 3, c = (a + 2) % 3;
+        const double fb = std::round((xl[b] - g.origin_m[b]) / s);
+        const double fc = std::round((xl[c] - g.origin_m[c]) / s);
+        const int ib = static_cast<int>(fb), ic = static_cast<int>(fc);
+        if (ib < rod_lo_[b] || ib > rod_hi_[b] || ic < rod_lo_[c] || ic > rod_hi_[c]) continue;
+        Eigen::Vector3d d = Eigen::Vector3d::Zero();
+        d[b] = xl[b] - (g.origin_m[b] + fb * s);
+        d[c] = xl[c] - (g.origin_m[c] + fc * s);
+        const double dist = d.norm();
+        const double delta = r + rr - dist;
+        if (delta <= 0.0) continue;
+        Eigen::Vector3d n = dist > 0.0 ? Eigen::Vector3d(d / dist) : Eigen::Vector3d(0, 0, 1);
+        if (dist <= 0.0 && a == 2) n = Eigen::Vector3d(1, 0, 0);
+        const auto id = kRodBase + static_cast<std::uint32_t>(a) * (1u << 14) +
+                        static_cast<std::uint32_t>((ib + 64) & 127) * 128u +
+                        static_cast<std::uint32_t>((ic + 64) & 127);
+        emit(id, n, delta);
+    }
+}
+
+}  // namespace sb::dem

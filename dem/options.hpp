@@ -1,0 +1,127 @@
+// Typed option structs of the DEM module (SI units, documented defaults, validate()).
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "core/units.hpp"
+#include "core/violation.hpp"
+
+namespace sb::dem {
+
+/// Elastic material of the particles or of the walls.
+struct Material {
+    double density_kg_m3 = 7800.0;     ///< mass density [kg/m^3] (steel)
+    double youngs_modulus_pa = 210e9;  ///< Young's modulus [Pa] (used by Hertz)
+    double poisson_ratio = 0.3;        ///< Poisson ratio [-] (used by Hertz)
+    Violations validate() const;
+};
+
+/// Contact properties of one pair type (particle–particle or particle–wall).
+struct PairProperties {
+    double restitution = 0.9;        ///< normal coefficient of restitution [-], in (0, 1]
+    double sliding_friction = 0.6;   ///< Coulomb sliding friction coefficient [-] (paper 000)
+    double rolling_friction = 0.01;  ///< rolling friction coefficient mu_r [-] (paper 000)
+    Violations validate() const;
+};
+
+/// One class of a discrete size distribution.
+struct SizeFraction {
+    double diameter_m = 3e-3;      ///< sphere diameter [m]
+    double number_fraction = 1.0;  ///< share of the particle count [-]
+};
+
+/// The particle population.
+struct ParticleOptions {
+    int count = 120;                                ///< number of spheres
+    double diameter_m = 3e-3;                       ///< diameter when monodisperse [m]
+    std::vector<SizeFraction> size_distribution{};  ///< if non-empty, replaces diameter_m
+    Material material{};                            ///< particle material
+    Violations validate() const;
+    double largest_diameter_m() const;
+};
+
+enum class NormalLaw { hooke, hertz };
+/// `restitution` picks the dashpot that matches the normal law.
+enum class DampingLaw { none, restitution, linear_dashpot, hertz_dashpot };
+enum class TangentialLaw { none, directional_coulomb, coulomb_spring };
+enum class RollingLaw { none, constant_torque };
+
+/// Composition and coefficients of the contact law (style.md: fixed slots).
+struct ContactOptions {
+    NormalLaw normal = NormalLaw::hooke;
+    DampingLaw damping = DampingLaw::restitution;
+    TangentialLaw tangential = TangentialLaw::directional_coulomb;
+    RollingLaw rolling = RollingLaw::constant_torque;
+    /// Hooke: spring constant [N/m] (required > 0). Hertz: k in k*delta^1.5 [N/m^1.5]; 0 means
+    /// from the materials, k = 4/3 E* sqrt(R*).
+    double normal_stiffness = 0.0;
+    /// Hooke only: wall spring constant [N/m]; 0 means the same as normal_stiffness.
+    double wall_normal_stiffness = 0.0;
+    /// CoulombSpring: tangential stiffness as a fraction of the (tangent) normal stiffness [-].
+    double tangential_stiffness_ratio = 2.0 / 7.0;
+    /// DirectionalCoulomb/rolling: slip speed below which the force ramps linearly to 0 [m/s].
+    double slip_regularisation_m_s = 1e-4;
+    PairProperties particle_particle{};
+    PairProperties particle_wall{};
+    Material wall_material{};  ///< enclosure material (Hertz walls)
+    Violations validate() const;
+};
+
+enum class EnclosureShape { cylinder, box };
+
+/// Rods of diameter rod_diameter_m along every edge of a cubic cell lattice (paper 002).
+struct RodGridOptions {
+    bool enabled = false;
+    double rod_diameter_m = 1e-3;             ///< rod diameter [m]
+    double cell_size_m = 5e-3;                ///< lattice spacing [m]
+    Eigen::Vector3d origin_m{0.0, 0.0, 0.0};  ///< one lattice node, enclosure frame [m]
+    Violations validate() const;
+};
+
+/// A solid axis-aligned plate (partition rib) in the enclosure frame.
+struct PlateOptions {
+    Eigen::Vector3d min_corner_m{0.0, 0.0, 0.0};  ///< [m]
+    Eigen::Vector3d max_corner_m{0.0, 0.0, 0.0};  ///< [m]
+};
+
+/// The cavity in its own frame: axis along local z, bottom at z = 0, centred on the z axis.
+/// The frame origin (bottom centre) is the reference point for the wall moment.
+struct EnclosureOptions {
+    EnclosureShape shape = EnclosureShape::cylinder;
+    double inner_diameter_m = 19e-3;  ///< cylinder inner diameter [m] (paper 000 Table 1)
+    double height_m = 25e-3;          ///< inner height (cylinder and box) [m]
+    double length_x_m = 30e-3;        ///< box inner size along local x [m] (paper 002)
+    double length_y_m = 30e-3;        ///< box inner size along local y [m]
+    RodGridOptions rods{};
+    std::vector<PlateOptions> plates{};
+    Violations validate() const;
+};
+
+/// Particles that move with the enclosure until a release time (paper 004).
+struct LockOptions {
+    std::vector<int> particle_ids{};  ///< explicit set (enclosure-frame positions are frozen)
+    double fraction = 0.0;            ///< else this share, lowest along local z first [-]
+    double release_time_s = 0.0;      ///< time at which all locked particles are freed [s]
+    Violations validate() const;
+};
+
+/// Everything the solver needs.
+struct SolverOptions {
+    ParticleOptions particles{};
+    ContactOptions contact{};
+    EnclosureOptions enclosure{};
+    LockOptions lock{};
+    Eigen::Vector3d gravity_m_s2{0.0, 0.0, -kStandardGravity};  ///< world frame [m/s^2]
+    double max_overlap_fraction = 0.5;  ///< guard: overlap / radius above this throws [-]
+    /// Verlet skin of the broad phase as a fraction of the largest diameter [-]; the list is
+    /// rebuilt when a particle has moved more than half the skin in the enclosure frame
+    /// (0 = rebuild every step).
+    double neighbor_skin_fraction = 0.1;
+    int threads = 1;           ///< OpenMP threads; 0 = OpenMP default
+    bool track_energy = true;  ///< energy ledger each step
+    int energy_layers = 0;     ///< dissipation per layer along local z (0 = off)
+    Violations validate() const;
+};
+
+}  // namespace sb::dem

@@ -1,0 +1,178 @@
+// The DEM solver: spheres in a moving rigid enclosure, semi-implicit Euler, wall force/moment.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "dem/contact_law.hpp"
+#include "dem/enclosure.hpp"
+#include "dem/options.hpp"
+
+namespace sb::dem {
+
+/// A run-time guard fired (NaN, excessive overlap, particle outside the enclosure).
+class SimulationError : public std::runtime_error {
+  public:
+    enum class Kind { not_finite, overlap, outside };
+    SimulationError(Kind kind, std::int64_t step, double time_s, int particle_id,
+                    const std::string& what);
+    Kind kind;
+    std::int64_t step;  ///< step index at which the guard fired
+    double time_s;      ///< simulated time [s]
+    int particle_id;    ///< offending particle (lowest id if several)
+};
+
+/// Initial particles: positions and velocities in the enclosure frame.
+struct ParticleSet {
+    std::vector<Eigen::Vector3d> positions_m{};     ///< centres, enclosure frame [m]
+    std::vector<double> radii_m{};                  ///< [m]
+    std::vector<Eigen::Vector3d> velocities_m_s{};  ///< relative to the enclosure (optional)
+    std::vector<Eigen::Vector3d> angular_velocities_rad_s{};  ///< (optional)
+};
+
+/// Struct-of-arrays particle state, world frame.
+struct ParticleState {
+    std::vector<Eigen::Vector3d> x;    ///< positions [m]
+    std::vector<Eigen::Vector3d> v;    ///< velocities [m/s]
+    std::vector<Eigen::Vector3d> w;    ///< angular velocities [rad/s]
+    std::vector<double> radius;        ///< [m]
+    std::vector<double> inv_mass;      ///< [1/kg]
+    std::vector<double> inv_inertia;   ///< [1/(kg m^2)]
+    std::vector<std::uint8_t> locked;  ///< 1 while moving with the enclosure
+    std::size_t size() const { return x.size(); }
+};
+
+/// Energy ledger [J]. Works are cumulative since construction (or reset_energy()); the state
+/// energies are current. balance_error() = W_walls - (E - E0) - dissipated.
+struct EnergyLedger {
+    double wall_work = 0.0;       ///< work done by the walls on the particles
+    double normal_damping = 0.0;  ///< dissipated by the normal dashpots
+    double friction = 0.0;        ///< dissipated by sliding friction (incl. spring storage)
+    double rolling = 0.0;         ///< dissipated by rolling resistance
+    double kinetic_translational = 0.0;
+    double kinetic_rotational = 0.0;
+    double potential = 0.0;                   ///< -m g.x, world frame
+    double elastic = 0.0;                     ///< stored in the normal springs
+    double initial_total = 0.0;               ///< total mechanical energy at the last reset
+    std::vector<double> layer_dissipation{};  ///< per layer along local z (bottom first)
+
+    double mechanical() const {
+        return kinetic_translational + kinetic_rotational + potential + elastic;
+    }
+    double dissipated() const { return normal_damping + friction + rolling; }
+    double balance_error() const {
+        return wall_work - (mechanical() - initial_total) - dissipated();
+    }
+};
+
+/// DEM solver driven by the bench: set_enclosure_state() -> step(dt) -> wall_force/moment.
+class Solver {
+  public:
+    /// Throws std::invalid_argument listing every violation of options.validate().
+    Solver(const SolverOptions& options, const ParticleSet& particles,
+           const EnclosureState& enclosure = {});
+
+    /// Pose and velocity of the enclosure at the start of the next step.
+    void set_enclosure_state(const EnclosureState& state);
+    const EnclosureState& enclosure_state() const { return enclosure_state_; }
+
+    /// One semi-implicit Euler step of dt [s]. Throws SimulationError if a guard fires.
+    void step(double dt);
+
+    /// Force exerted by the particles on the enclosure during the last step, world [N].
+    const Eigen::Vector3d& wall_force() const { return wall_force_; }
+    /// Moment of that force about the enclosure origin, world [N m].
+    const Eigen::Vector3d& wall_moment() const { return wall_moment_; }
+
+    EnergyLedger energy() const;
+    /// Restarts the cumulative works and the reference energy.
+    void reset_energy();
+
+    const ParticleState& particles() const { return state_; }
+    /// Positions and velocities in the enclosure frame (for saving a settled state).
+    ParticleSet local_snapshot() const;
+    double time() const { return time_; }
+    std::int64_t step_count() const { return step_; }
+    std::size_t contact_count() const { return contacts_.size(); }
+    /// Number of neighbour-list (broad phase) rebuilds so far.
+    std::int64_t neighbor_builds() const { return neighbor_builds_; }
+    const ContactLaw& law() const { return law_; }
+    const Enclosure& enclosure() const { return enclosure_; }
+    const SolverOptions& options() const { return options_; }
+    /// Pair coefficients after set-up (for logging): [0] particle-particle, [1] particle-wall.
+    const PairCoefficients& coefficients(int which) const { return coeff_[which]; }
+
+    /// Locks particles to the enclosure (frozen enclosure-frame positions) until release().
+    void lock(const std::vector<int>& ids);
+    void release();
+    int locked_count() const;
+
+    struct Contact {
+        std::uint32_t i = 0, j = 0;  ///< j >= N: wall id j - N
+        double delta = 0.0;
+        Eigen::Vector3d n{0, 0, 1};
+        Eigen::Vector3d hist{0, 0, 0};
+    };
+    struct ContactResult {
+        Eigen::Vector3d f{0, 0, 0};   ///< force on i [N]
+        Eigen::Vector3d ti{0, 0, 0};  ///< torque on i [N m]
+        Eigen::Vector3d tj{0, 0, 0};  ///< torque on j, or wall moment about origin [N m]
+        Eigen::Vector3d xc{0, 0, 0};  ///< contact point [m]
+        double fs = 0.0, fd = 0.0;    ///< spring and (clamped) damping normal force [N]
+        double kl = 0.0;              ///< law constant (for elastic energy)
+    };
+
+  private:
+    template <class N, class D, class T, class R>
+    void compute_forces(const N& normal, const D& damping, const T& tangential, const R& rolling,
+                        double dt);
+    void build_contacts();
+    void build_neighbors();
+    void snap_locked(double dt);
+    int thread_count() const;
+
+    SolverOptions options_;
+    Enclosure enclosure_;
+    ContactLaw law_;
+    PairCoefficients coeff_[2];
+    EnclosureState enclosure_state_;
+    ParticleState state_;
+    std::vector<Eigen::Vector3d> local_x_, lock_local_;
+    double time_ = 0.0;
+    std::int64_t step_ = 0;
+    bool has_history_ = false;
+
+    // broad phase
+    Eigen::Vector3d grid_lo_;
+    double cell_ = 0.0;
+    int dims_[3]{1, 1, 1};
+    std::vector<std::uint32_t> cell_of_, cell_start_, cell_items_;
+    double skin_ = 0.0;
+    std::vector<std::uint32_t> nbr_begin_, nbr_list_;
+    std::vector<std::vector<std::uint32_t>> nbr_buffers_;
+    std::vector<Eigen::Vector3d> x_at_build_;
+    std::int64_t neighbor_builds_ = 0;
+
+    // contacts (i-major), previous step's for the history, reverse index for gather
+    std::vector<Contact> contacts_, prev_contacts_;
+    std::vector<ContactResult> results_;
+    std::vector<std::uint32_t> begin_, prev_begin_, rev_begin_, rev_list_;
+    std::vector<std::vector<Contact>> thread_buffers_;
+    std::vector<std::uint32_t> count_, cursor_;
+
+    std::vector<Eigen::Vector3d> v_old_, w_old_;
+    Eigen::Vector3d wall_force_ = Eigen::Vector3d::Zero();
+    Eigen::Vector3d wall_moment_ = Eigen::Vector3d::Zero();
+    Eigen::Vector3d lock_force_ = Eigen::Vector3d::Zero();
+    Eigen::Vector3d lock_moment_ = Eigen::Vector3d::Zero();
+    std::vector<Eigen::Vector3d> pw_f_, pw_m_;
+
+    // energy
+    EnergyLedger ledger_;
+    std::vector<double> e_buf_;
+};
+
+}  // namespace sb::dem

@@ -1,0 +1,96 @@
+// End-to-end campaigns through the shakerbench executable: resume after a hard kill.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include "cli_helpers.hpp"
+
+namespace {
+
+using namespace sb::test;
+
+/// A small real campaign: 30 particles, one level, three frequencies, short budgets.
+std::filesystem::path write_small_campaign(const std::filesystem::path& dir) {
+    std::string text = file_text(std::string(SB_SOURCE_DIR) + "/configs/paper000-h0.toml");
+    const auto set = [&text](const std::string& key, const std::string& line) {
+        const auto at = text.find("\n" + key);
+        const auto end = text.find('\n', at + 1);
+        text.replace(at + 1, end - at - 1, line);
+    };
+    set("levels_g", "levels_g = [2.0]");
+    set("count = 7", "count = 3");
+    set("count = 120", "count = 30");
+    set("max_overlap_fraction", "max_overlap_fraction = 0.05");
+    set("max_periods", "max_periods = 10");
+    set("window_periods", "window_periods = 3");
+    set("transient_periods", "transient_periods = 1");
+    const auto file = dir / "small.toml";
+    std::ofstream(file) << text;
+    return file;
+}
+
+TEST(Cli, AKilledCampaignResumesToTheSameFilesAsAnUninterruptedOne) {
+    const auto dir = temp_dir("resume");
+    const auto config = write_small_campaign(dir);
+    const auto whole = dir / "whole";
+    const auto resumed = dir / "resumed";
+    const auto r = run("run " + config.string() + " --out " + whole.string() + " -j 1 -q");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+
+    // Start the same campaign, kill it hard once its first point is checkpointed.
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        execl(SB_CLI, SB_CLI, "run", config.c_str(), "--out", resumed.c_str(), "-j", "1", "-q",
+              static_cast<char*>(nullptr));
+        _exit(127);
+    }
+    const auto checkpoint = resumed / "checkpoints" / "H-0_2g.txt";
+    bool killed_mid_campaign = false;
+    for (int i = 0; i < 60000; ++i) {
+        const std::string text = file_text(checkpoint);
+        if (text.find("points_done 1\n") != std::string::npos) {
+            kill(child, SIGKILL);
+            killed_mid_campaign = true;
+            break;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    int status = 0;
+    waitpid(child, &status, 0);
+    ASSERT_TRUE(killed_mid_campaign) << "the first point was never checkpointed";
+    ASSERT_FALSE(std::filesystem::exists(resumed / "points.csv")) << "killed too late";
+
+    const auto again = run("run " + config.string() + " --out " + resumed.string() + " -j 1 -q");
+    ASSERT_EQ(again.exit_code, 0) << again.output;
+    EXPECT_NE(again.output.find("1 taken from checkpoints"), std::string::npos) << again.output;
+    for (const char* name : {"points.csv", "control.csv", "frf.uff", "recording.toml"}) {
+        EXPECT_EQ(file_text(whole / name), file_text(resumed / name)) << name;
+        EXPECT_FALSE(file_text(whole / name).empty()) << name;
+    }
+    // Three frequencies resolve no half-power band: damping.csv may hold no rows, but the
+    // same ones.
+    EXPECT_EQ(file_text(whole / "damping.csv"), file_text(resumed / "damping.csv"));
+}
+
+TEST(Cli, RunWithABadConfigExitsTwoBeforeSimulating) {
+    const auto dir = temp_dir("run-bad");
+    const auto file = dir / "bad.toml";
+    std::ofstream(file) << file_text(std::string(SB_SOURCE_DIR) + "/configs/paper000-h0.toml")
+                        << "\n[dampers.pd2]\npoint = \"nowhere\"\n";
+    const auto r = run("run " + file.string() + " --out " + (dir / "out").string());
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("dampers.pd2.point = \"nowhere\": must name a point"),
+              std::string::npos)
+        << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out" / "points.csv"));
+}
+
+}  // namespace

@@ -1,0 +1,105 @@
+// Normal impacts against closed forms: restitution and contact duration, Hooke and Hertz,
+// particle-wall and particle-particle.
+#include <gtest/gtest.h>
+
+#include "dem/setup.hpp"
+#include "dem/solver.hpp"
+#include "test_helpers.hpp"
+
+namespace sb::dem {
+namespace {
+
+using test::free_box_options;
+using test::particles_at;
+
+/// The brief's requirement for the measured restitution.
+constexpr double kRestitutionTolerance = 0.01;
+/// The contact time is resolved to dt = t_c / 400 plus the explicit integrator's phase error.
+constexpr double kContactTimeTolerance = 0.01;
+
+struct ImpactResult {
+    double restitution = 0.0;
+    double contact_time_s = 0.0;
+};
+
+constexpr double kRadius = 1.5e-3;
+constexpr double kSpeed = 0.5;
+
+double sphere_mass() { return 7800.0 * 4.0 / 3.0 * kPi * kRadius * kRadius * kRadius; }
+
+/// wall = true: one sphere onto the bottom; else two spheres head-on.
+ImpactResult run_impact(NormalLaw law, double e, bool wall, double dt) {
+    SolverOptions o = free_box_options(wall ? 1 : 2, law);
+    o.contact.particle_particle.restitution = e;
+    o.contact.particle_wall.restitution = e;
+    if (e >= 1.0) o.contact.damping = DampingLaw::none;
+    const ParticleSet p =
+        wall ? particles_at({{0, 0, kRadius + 1e-6}}, kRadius, {{0, 0, -kSpeed}})
+             : particles_at({{0, 0, 0.05}, {0, 0, 0.05 + 2 * kRadius + 1e-6}}, kRadius,
+                            {{0, 0, 0.5 * kSpeed}, {0, 0, -0.5 * kSpeed}});
+    Solver s(o, p);
+    ImpactResult r;
+    bool touched = false;
+    for (int k = 0; k < 1000000; ++k) {
+        s.step(dt);
+        if (s.contact_count() > 0) {
+            touched = true;
+            r.contact_time_s += dt;
+        } else if (touched) {
+            break;
+        }
+    }
+    const auto& v = s.particles().v;
+    r.restitution = wall ? v[0].z() / kSpeed : (v[1].z() - v[0].z()) / kSpeed;
+    return r;
+}
+
+struct Case {
+    NormalLaw law;
+    bool wall;
+};
+
+class NormalImpact : public ::testing::TestWithParam<Case> {};
+
+TEST_P(NormalImpact, MeasuredRestitutionEqualsTheSetOne) {
+    const auto c = GetParam();
+    for (double e : {0.5, 0.9}) {
+        const double tc = 1e-4;  // coarse guess; the step is far below any t_c here
+        const ImpactResult r = run_impact(c.law, e, c.wall, tc / 400.0);
+        EXPECT_NEAR(r.restitution, e, kRestitutionTolerance * e) << "e = " << e;
+    }
+}
+
+TEST_P(NormalImpact, ContactDurationFollowsTheory) {
+    const auto c = GetParam();
+    const double m_eff = c.wall ? sphere_mass() : 0.5 * sphere_mass();
+    double expected = 0.0;
+    double e = 0.9;
+    if (c.law == NormalLaw::hooke) {
+        expected = hooke_contact_time(m_eff, 1e5, e);  // pi / sqrt(k/m - (c/2m)^2)
+    } else {
+        e = 1.0;  // Hertz: the undamped closed form
+        const double r_eff = c.wall ? kRadius : 0.5 * kRadius;
+        const double nu = 0.3, young = 210e9;
+        const double e_star = c.wall ? young / (2 * (1 - nu * nu)) : young / (2 * (1 - nu * nu));
+        // paper-style approximation 2.87 (m*^2 / (R* E*^2 v))^{1/5}
+        const double approx =
+            2.87 * std::pow(m_eff * m_eff / (r_eff * e_star * e_star * kSpeed), 0.2);
+        expected = hertz_contact_time(m_eff, 4.0 / 3.0 * e_star * std::sqrt(r_eff), kSpeed);
+        EXPECT_NEAR(expected, approx, 0.005 * approx);
+    }
+    const ImpactResult r = run_impact(c.law, e, c.wall, expected / 400.0);
+    EXPECT_NEAR(r.contact_time_s, expected, kContactTimeTolerance * expected);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    HookeAndHertz, NormalImpact,
+    ::testing::Values(Case{NormalLaw::hooke, true}, Case{NormalLaw::hooke, false},
+                      Case{NormalLaw::hertz, true}, Case{NormalLaw::hertz, false}),
+    [](const auto& p_info) {
+        return std::string(p_info.param.law == NormalLaw::hooke ? "Hooke" : "Hertz") +
+               (p_info.param.wall ? "ParticleWall" : "ParticleParticle");
+    });
+
+}  // namespace
+}  // namespace sb::dem
