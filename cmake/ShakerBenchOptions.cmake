@@ -45,4 +45,6 @@ function(sb_add_test name label)
   target_link_libraries(${name} PRIVATE ${ARG_DEPENDS} GTest::gtest GTest::gtest_main sb::warnings)
   target_compile_definitions(${name} PRIVATE SB_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   gtest_discover_tests(${name} PROPERTIES LABELS ${label} DISCOVERY_TIMEOUT 60)
+  # The sanitizer job builds only the unit suites (target sb_unit_tests, tests/CMakeLists.txt).
+  set_property(GLOBAL APPEND PROPERTY SB_TESTS_${label} ${name})
 endfunction()

@@ -23,5 +23,6 @@ ctest --preset ci -j "$jobs"
 
 echo "== AddressSanitizer + UndefinedBehaviorSanitizer, unit tests"
 cmake --preset ci-asan-ubsan >/dev/null
-cmake --build --preset ci-asan-ubsan -j "$jobs"
+# Only the unit suites run under the sanitizers, so only they (and what they link) are built.
+cmake --build --preset ci-asan-ubsan -j "$jobs" --target sb_unit_tests
 ctest --preset ci-asan-ubsan -j "$jobs"
