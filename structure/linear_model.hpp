@@ -20,6 +20,10 @@ struct PointMap {
     /// x, y, z [rad per DOF unit], structure frame.
     Eigen::Matrix<double, 6, Eigen::Dynamic> op;
     Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  ///< undeformed position [m]
+    /// Base excitation only: quasi-static motion of the point per unit base displacement
+    /// along the excitation direction [m/m, rad/m]: op r, plus the prescribed motion of the
+    /// point's fixed DOFs when it sits on the moving support (which op cannot see).
+    Eigen::Matrix<double, 6, 1> base_motion = Eigen::Matrix<double, 6, 1>::Zero();
 };
 
 /// Linear structure M x'' + C x' + K x = f on the free (unconstrained) DOFs.
@@ -65,7 +69,11 @@ class LinearModel {
     void add_point(PointMap point);
     void set_rigid_translation(Eigen::MatrixXd r) { rigid_translation_ = std::move(r); }
     void set_sample_translation(Eigen::MatrixXd t) { sample_translation_ = std::move(t); }
-    void set_base_influence(Eigen::VectorXd r) { base_influence_ = std::move(r); }
+    /// Sets r and every point's base_motion to op r.
+    void set_base_influence(Eigen::VectorXd r);
+    /// Adds the prescribed motion of fixed DOFs to a point's base_motion (after
+    /// set_base_influence).
+    void add_prescribed_base_motion(std::string_view point, const Eigen::Matrix<double, 6, 1>& m);
     void set_excitation_direction(const Eigen::Vector3d& d) { direction_ = d.normalized(); }
 
   private:
