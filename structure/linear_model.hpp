@@ -53,6 +53,9 @@ class LinearModel {
     /// n x 3 rigid-body translation vectors: column d holds the free-DOF values of a unit
     /// rigid translation along axis d (used for effective masses).
     [[nodiscard]] const Eigen::MatrixXd& rigid_translation() const { return rigid_translation_; }
+    /// False when the model cannot know every DOF's share of a rigid translation (a matrix
+    /// import with unnamed rows and no rigid-body file): effective masses are then unknown.
+    [[nodiscard]] bool rigid_translation_known() const { return rigid_translation_known_; }
     /// 3k x n map from free DOFs to the translations of k sample locations (all nodes, masses
     /// and points): rows 3j..3j+2 are x, y, z of location j (used to scale mode shapes).
     [[nodiscard]] const Eigen::MatrixXd& sample_translation() const { return sample_translation_; }
@@ -67,7 +70,10 @@ class LinearModel {
     // Set-up, used by the model builders.
     void set_damping(Eigen::MatrixXd damping) { damping_ = std::move(damping); }
     void add_point(PointMap point);
-    void set_rigid_translation(Eigen::MatrixXd r) { rigid_translation_ = std::move(r); }
+    void set_rigid_translation(Eigen::MatrixXd r, bool known = true) {
+        rigid_translation_ = std::move(r);
+        rigid_translation_known_ = known;
+    }
     void set_sample_translation(Eigen::MatrixXd t) { sample_translation_ = std::move(t); }
     /// Sets r and every point's base_motion to op r.
     void set_base_influence(Eigen::VectorXd r);
@@ -82,6 +88,7 @@ class LinearModel {
     std::optional<Eigen::MatrixXd> damping_;
     std::vector<PointMap> points_;
     Eigen::MatrixXd rigid_translation_;
+    bool rigid_translation_known_ = true;
     Eigen::MatrixXd sample_translation_;
     std::optional<Eigen::VectorXd> base_influence_;
     Eigen::Vector3d direction_ = Eigen::Vector3d::UnitZ();
