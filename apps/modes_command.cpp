@@ -2,15 +2,19 @@
 // the named points of a config's structure.
 #include "modes_command.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <sstream>
+#include <stdexcept>
 
 #include "bench/config_errors.hpp"
 #include "load_config.hpp"
 #include "structure/linear_model.hpp"
+#include "structure/matrix_market.hpp"
 #include "structure/modal_analysis.hpp"
 
 namespace sb::apps {
@@ -43,6 +47,36 @@ void write_shapes_csv(const std::filesystem::path& file, const structure::Linear
     }
 }
 
+/// An effective mass, or "n/a" when the model cannot know it (see docs/structure.md).
+std::string mass_text(double kg) {
+    if (std::isnan(kg)) return "n/a";
+    std::ostringstream out;
+    out << std::fixed << std::setprecision(5) << kg;
+    return out.str();
+}
+
+void print_modes(const bench::CampaignConfig& config, const structure::LinearModel& model,
+                 const structure::ModalBasis& basis) {
+    std::cout << "Structure of " << config.source << " (" << config.name << "): " << model.dofs()
+              << " free DOFs\n\n";
+    std::cout << " mode  frequency [Hz]  damping [%]  modal mass [kg]"
+                 "   effective mass x / y / z [kg]\n";
+    std::cout << std::fixed;
+    for (std::size_t i = 0; i < basis.modes.size(); ++i) {
+        const auto& m = basis.modes[i];
+        std::cout << std::setw(5) << (i + 1) << std::setw(16) << std::setprecision(4)
+                  << m.frequency_hz << std::setw(13) << std::setprecision(3)
+                  << 100.0 * m.damping_ratio << std::setw(17) << std::setprecision(5)
+                  << m.modal_mass_kg << "   " << mass_text(m.effective_mass_kg.x()) << " / "
+                  << mass_text(m.effective_mass_kg.y()) << " / "
+                  << mass_text(m.effective_mass_kg.z()) << '\n';
+    }
+    if (!model.rigid_translation_known()) {
+        std::cout << "\nEffective masses n/a: the matrix rows are not all named; give "
+                     "structure.matrix.rigid_body_file.\n";
+    }
+}
+
 int run_modes(const ModesOptions& options) {
     int exit_code = 0;
     const auto config = load_config_or_report(options.config, exit_code);
@@ -50,31 +84,26 @@ int run_modes(const ModesOptions& options) {
         return exit_code;
     }
     const int count = options.count > 0 ? options.count : config->structure.modes;
+    structure::LinearModel model;
     try {
-        const auto model = structure::build_linear_model(config->structure, config->base_dir);
+        model = structure::build_linear_model(config->structure, config->base_dir);
+    } catch (const structure::MatrixMarketError& e) {
+        std::cerr << "shakerbench modes: " << e.what() << '\n';
+        return bench::kExitBadInput;  // an imported matrix file that cannot be read
+    } catch (const std::invalid_argument& e) {
+        std::cerr << "shakerbench modes: " << e.what() << '\n';
+        return bench::kExitBadInput;  // a structure the config describes but cannot hold
+    }
+    try {
         const auto basis = structure::compute_modes(model, config->structure.damping, count);
-
-        std::cout << "Structure of " << config->source << " (" << config->name
-                  << "): " << model.dofs() << " free DOFs\n\n";
-        std::cout << " mode  frequency [Hz]  damping [%]  modal mass [kg]"
-                     "   effective mass x / y / z [kg]\n";
-        std::cout << std::fixed;
-        for (std::size_t i = 0; i < basis.modes.size(); ++i) {
-            const auto& m = basis.modes[i];
-            std::cout << std::setw(5) << (i + 1) << std::setw(16) << std::setprecision(4)
-                      << m.frequency_hz << std::setw(13) << std::setprecision(3)
-                      << 100.0 * m.damping_ratio << std::setw(17) << std::setprecision(5)
-                      << m.modal_mass_kg << "   " << std::setprecision(5) << m.effective_mass_kg.x()
-                      << " / " << m.effective_mass_kg.y() << " / " << m.effective_mass_kg.z()
-                      << '\n';
-        }
+        print_modes(*config, model, basis);
         std::filesystem::create_directories(options.out_dir);
         const auto file = std::filesystem::path(options.out_dir) / (config->name + "-modes.csv");
         write_shapes_csv(file, model, basis);
         std::cout << "\nMode shapes at the named points: " << file.string() << '\n';
     } catch (const std::exception& e) {
         std::cerr << "shakerbench modes: " << e.what() << '\n';
-        return bench::kExitBadInput;
+        return bench::kExitFailure;  // the eigensolver or the output, not the input
     }
     return 0;
 }

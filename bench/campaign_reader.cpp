@@ -123,8 +123,12 @@ CampaignSpec read_campaign(Section& root, Section& campaign) {
     }
     spec.control_point = campaign.string("control_point", "damper",
                                          "named point whose RMS acceleration is controlled");
-    spec.seed = static_cast<std::uint64_t>(
-        std::max(0, campaign.integer("seed", 1, "seed of the particle filling")));
+    const int seed = campaign.integer("seed", 1, "seed of the particle filling");
+    if (seed < 0) {
+        campaign.error("seed", std::to_string(seed), "must be >= 0",
+                       "seed of the particle filling");
+    }
+    spec.seed = static_cast<std::uint64_t>(std::max(0, seed));
     spec.start_points_linear =
         campaign.choice("point_start", "linear-steady-state",
                         {"linear-steady-state", "previous-state"},

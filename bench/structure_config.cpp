@@ -1,7 +1,12 @@
 // Reading the [structure] section of a campaign config.
 #include "bench/structure_config.hpp"
 
+#include <cmath>
 #include <map>
+#include <optional>
+#include <string_view>
+
+#include "structure/matrix_market.hpp"
 
 namespace sb::bench {
 namespace {
@@ -123,21 +128,80 @@ LumpedSpec read_lumped(Section lumped) {
     return spec;
 }
 
+/// Size of the Matrix Market file the config names at `key` (already resolved to `file`), or
+/// nothing, with the error reported, when it cannot be read: a missing or broken file named
+/// by a config is a config error.
+std::optional<structure::MatrixMarketSize> matrix_size(Section& matrix, std::string_view key,
+                                                       const std::string& written,
+                                                       const std::filesystem::path& file,
+                                                       std::string_view meaning) {
+    if (file.empty()) return std::nullopt;
+    try {
+        return structure::read_matrix_market_size(file);
+    } catch (const structure::MatrixMarketError& e) {
+        matrix.error(key, "\"" + written + "\"", std::string("cannot be read: ") + e.what(),
+                     std::string(meaning));
+    }
+    return std::nullopt;
+}
+
+std::string shape_text(const structure::MatrixMarketSize& size) {
+    return std::to_string(size.rows) + " x " + std::to_string(size.cols);
+}
+
 MatrixSpec read_matrix(Section matrix, const std::filesystem::path& base_dir) {
     MatrixSpec spec;
     const auto resolve = [&](const std::string& name) {
         const std::filesystem::path p(name);
-        return p.is_absolute() || name.empty() ? p : base_dir / p;
+        // Absolute, so that the model builder does not prefix a relative config folder again.
+        return p.is_absolute() || name.empty() ? p : std::filesystem::absolute(base_dir / p);
     };
-    spec.mass_file = resolve(matrix.required_string("mass_file", "Matrix Market mass matrix"));
-    spec.stiffness_file =
-        resolve(matrix.required_string("stiffness_file", "Matrix Market stiffness matrix"));
+    constexpr std::string_view kMassMeaning = "Matrix Market mass matrix";
+    constexpr std::string_view kStiffnessMeaning = "Matrix Market stiffness matrix";
+    constexpr std::string_view kRigidMeaning =
+        "Matrix Market n x 3: DOF values of unit rigid translations along x, y, z";
+    const std::string mass_name = matrix.required_string("mass_file", kMassMeaning);
+    const std::string stiffness_name = matrix.required_string("stiffness_file", kStiffnessMeaning);
+    const std::string rigid_name = matrix.string("rigid_body_file", "", kRigidMeaning);
+    spec.mass_file = resolve(mass_name);
+    spec.stiffness_file = resolve(stiffness_name);
+    spec.rigid_body_file = resolve(rigid_name);
+    const auto mass = matrix_size(matrix, "mass_file", mass_name, spec.mass_file, kMassMeaning);
+    const auto stiffness = matrix_size(matrix, "stiffness_file", stiffness_name,
+                                       spec.stiffness_file, kStiffnessMeaning);
+    const auto rigid =
+        matrix_size(matrix, "rigid_body_file", rigid_name, spec.rigid_body_file, kRigidMeaning);
+    if (mass && mass->rows != mass->cols) {
+        matrix.error("mass_file", "\"" + mass_name + "\"",
+                     "must hold a square matrix, holds " + shape_text(*mass),
+                     std::string(kMassMeaning));
+    }
+    if (mass && stiffness && (stiffness->rows != mass->rows || stiffness->cols != mass->cols)) {
+        matrix.error(
+            "stiffness_file", "\"" + stiffness_name + "\"",
+            "must hold " + shape_text(*mass) + " like mass_file, holds " + shape_text(*stiffness),
+            std::string(kStiffnessMeaning));
+    }
+    if (mass && rigid && (rigid->rows != mass->rows || rigid->cols != 3)) {
+        matrix.error(
+            "rigid_body_file", "\"" + rigid_name + "\"",
+            "must hold " + std::to_string(mass->rows) + " x 3, holds " + shape_text(*rigid),
+            std::string(kRigidMeaning));
+    }
     Section dofs = matrix.table("dofs", "named DOFs: name = zero-based row");
     for (const auto& [name, row] : dofs.named_numbers("zero-based row of a named DOF")) {
-        if (row < 0 || row != static_cast<double>(static_cast<long>(row))) {
+        constexpr double kLargestRow = 1e9;  // keeps the conversion to int defined
+        if (!(row >= 0.0 && row <= kLargestRow && row == std::floor(row))) {
             dofs.error(name, format_value(row), "must be a whole number >= 0",
                        "zero-based row of a named DOF");
             continue;
+        }
+        if (mass && row >= static_cast<double>(mass->rows)) {
+            // Reported here, where the line is known; the DOF is kept so that its point
+            // exists and the excitation naming it is not blamed as well.
+            dofs.error(name, format_value(row),
+                       "must be < " + std::to_string(mass->rows) + ", the rows of mass_file",
+                       "zero-based row of a named DOF");
         }
         spec.named_dofs.emplace_back(name, static_cast<int>(row));
     }
@@ -200,31 +264,41 @@ StructureSpec read_structure(Section section, const std::filesystem::path& base_
                           "model section of another kind");
         }
     }
-    switch (spec.kind) {
-        case StructureSpec::Kind::beam:
-            if (!section.has("beam")) {
-                section.error("beam", "", "is required",
-                              "the beam of a structure of kind \"beam\"");
-                return spec;
-            }
-            spec.beam = read_beam(section.table("beam", "the beam"));
-            break;
-        case StructureSpec::Kind::lumped:
-            spec.lumped = read_lumped(section.table("lumped", "the lumped model"));
-            break;
-        case StructureSpec::Kind::matrix:
-            if (!section.has("matrix")) {
-                section.error("matrix", "", "is required",
-                              "the matrices of a structure of kind \"matrix\"");
-                return spec;
-            }
-            spec.matrix = read_matrix(section.table("matrix", "imported matrices"), base_dir);
-            break;
+    // A missing model section is reported, and everything else of [structure] is still read
+    // and checked; only the checks that need the model are left out.
+    const char* model_key = kind == "lumped" ? "lumped" : kind == "matrix" ? "matrix" : "beam";
+    const bool model_present = section.has(model_key);
+    if (!model_present) {
+        const char* what = spec.kind == StructureSpec::Kind::beam     ? "the beam"
+                           : spec.kind == StructureSpec::Kind::lumped ? "the lumped model"
+                                                                      : "the matrices";
+        section.error(model_key, "", "is required",
+                      std::string(what) + " of a structure of kind \"" + kind + "\"");
+    } else {
+        switch (spec.kind) {
+            case StructureSpec::Kind::beam:
+                spec.beam = read_beam(section.table("beam", "the beam"));
+                break;
+            case StructureSpec::Kind::lumped:
+                spec.lumped = read_lumped(section.table("lumped", "the lumped model"));
+                break;
+            case StructureSpec::Kind::matrix:
+                spec.matrix = read_matrix(section.table("matrix", "imported matrices"), base_dir);
+                break;
+        }
     }
     spec.damping = read_damping(section.table("damping", "structural damping"));
     spec.excitation = read_excitation(section.table("excitation", "how the structure is driven"));
     section.finish();
-    section.report(spec.validate());
+    Violations violations = spec.validate();
+    if (!model_present) {
+        // Without the model, its own checks and the names that refer into it mean nothing.
+        std::erase_if(violations, [&](const Violation& v) {
+            return v.key.starts_with(std::string(model_key) + ".") || v.key == "excitation.point" ||
+                   v.key == "excitation.support";
+        });
+    }
+    section.report(violations);
     return spec;
 }
 

@@ -3,6 +3,7 @@
 
 #include <Eigen/Cholesky>
 #include <array>
+#include <map>
 #include <stdexcept>
 
 #include "structure/beam_element.hpp"
@@ -106,18 +107,27 @@ LinearModel build_beam_model(const BeamSpec& beam, const ExcitationSpec& excitat
         }
         return op;
     };
+    // Node of every point; a later point of the same name replaces an earlier one, as in
+    // LinearModel::add_point.
+    std::map<std::string, int> point_nodes;
     for (const auto& s : beam.supports) {
-        model.add_point({s.name, node_op(nearest_node(nodes, s.x_m)), {s.x_m, 0.0, 0.0}});
+        const int node = nearest_node(nodes, s.x_m);
+        model.add_point({s.name, node_op(node), {s.x_m, 0.0, 0.0}});
+        point_nodes[s.name] = node;
     }
     for (const auto& lumped : beam.masses) {
         if (lumped.name.empty()) continue;
         // Centre of gravity moves with u + theta x r = u - [r]x theta (small rotations).
-        Eigen::Matrix<double, 6, Eigen::Dynamic> op = node_op(nearest_node(nodes, lumped.x_m));
+        const int node = nearest_node(nodes, lumped.x_m);
+        Eigen::Matrix<double, 6, Eigen::Dynamic> op = node_op(node);
         op.topRows<3>() -= skew(lumped.offset_m) * op.bottomRows<3>();
         model.add_point({lumped.name, op, Eigen::Vector3d(lumped.x_m, 0.0, 0.0) + lumped.offset_m});
+        point_nodes[lumped.name] = node;
     }
     for (const auto& p : beam.points) {
-        model.add_point({p.name, node_op(nearest_node(nodes, p.x_m)), {p.x_m, 0.0, 0.0}});
+        const int node = nearest_node(nodes, p.x_m);
+        model.add_point({p.name, node_op(node), {p.x_m, 0.0, 0.0}});
+        point_nodes[p.name] = node;
     }
 
     // Sample translations: every node, then every lumped mass centre of gravity.
@@ -181,6 +191,17 @@ LinearModel build_beam_model(const BeamSpec& beam, const ExcitationSpec& excitat
                 "base influence vector is undefined");
         }
         model.set_base_influence(solver.solve(rhs));
+        // Points on the moving node also move through its fixed DOFs, which have no column
+        // in their operators: add u_b dir on those (a lumped mass there moves rigidly with
+        // its node, the prescribed rotations being zero).
+        const int moving_node = nearest_node(nodes, moving->x_m);
+        Eigen::Matrix<double, 6, 1> prescribed = Eigen::Matrix<double, 6, 1>::Zero();
+        for (int d = 0; d < 3; ++d) {
+            if (fixed[static_cast<std::size_t>(first + d)]) prescribed(d) = dir(d);
+        }
+        for (const auto& [name, node] : point_nodes) {
+            if (node == moving_node) model.add_prescribed_base_motion(name, prescribed);
+        }
     }
     return model;
 }

@@ -48,6 +48,22 @@ Eigen::VectorXd LinearModel::point_load(std::string_view name, const Eigen::Vect
     return point(name).op.transpose() * load;
 }
 
+void LinearModel::set_base_influence(Eigen::VectorXd r) {
+    base_influence_ = std::move(r);
+    for (auto& p : points_) p.base_motion = p.op * *base_influence_;
+}
+
+void LinearModel::add_prescribed_base_motion(std::string_view point,
+                                             const Eigen::Matrix<double, 6, 1>& m) {
+    for (auto& p : points_) {
+        if (p.name == point) {
+            p.base_motion += m;
+            return;
+        }
+    }
+    throw std::out_of_range("unknown point '" + std::string(point) + "'");
+}
+
 void LinearModel::add_point(PointMap point) {
     for (auto& p : points_) {
         if (p.name == point.name) {

@@ -20,6 +20,10 @@ struct PointMap {
     /// x, y, z [rad per DOF unit], structure frame.
     Eigen::Matrix<double, 6, Eigen::Dynamic> op;
     Eigen::Vector3d position_m = Eigen::Vector3d::Zero();  ///< undeformed position [m]
+    /// Base excitation only: quasi-static motion of the point per unit base displacement
+    /// along the excitation direction [m/m, rad/m]: op r, plus the prescribed motion of the
+    /// point's fixed DOFs when it sits on the moving support (which op cannot see).
+    Eigen::Matrix<double, 6, 1> base_motion = Eigen::Matrix<double, 6, 1>::Zero();
 };
 
 /// Linear structure M x'' + C x' + K x = f on the free (unconstrained) DOFs.
@@ -49,6 +53,9 @@ class LinearModel {
     /// n x 3 rigid-body translation vectors: column d holds the free-DOF values of a unit
     /// rigid translation along axis d (used for effective masses).
     [[nodiscard]] const Eigen::MatrixXd& rigid_translation() const { return rigid_translation_; }
+    /// False when the model cannot know every DOF's share of a rigid translation (a matrix
+    /// import with unnamed rows and no rigid-body file): effective masses are then unknown.
+    [[nodiscard]] bool rigid_translation_known() const { return rigid_translation_known_; }
     /// 3k x n map from free DOFs to the translations of k sample locations (all nodes, masses
     /// and points): rows 3j..3j+2 are x, y, z of location j (used to scale mode shapes).
     [[nodiscard]] const Eigen::MatrixXd& sample_translation() const { return sample_translation_; }
@@ -63,9 +70,16 @@ class LinearModel {
     // Set-up, used by the model builders.
     void set_damping(Eigen::MatrixXd damping) { damping_ = std::move(damping); }
     void add_point(PointMap point);
-    void set_rigid_translation(Eigen::MatrixXd r) { rigid_translation_ = std::move(r); }
+    void set_rigid_translation(Eigen::MatrixXd r, bool known = true) {
+        rigid_translation_ = std::move(r);
+        rigid_translation_known_ = known;
+    }
     void set_sample_translation(Eigen::MatrixXd t) { sample_translation_ = std::move(t); }
-    void set_base_influence(Eigen::VectorXd r) { base_influence_ = std::move(r); }
+    /// Sets r and every point's base_motion to op r.
+    void set_base_influence(Eigen::VectorXd r);
+    /// Adds the prescribed motion of fixed DOFs to a point's base_motion (after
+    /// set_base_influence).
+    void add_prescribed_base_motion(std::string_view point, const Eigen::Matrix<double, 6, 1>& m);
     void set_excitation_direction(const Eigen::Vector3d& d) { direction_ = d.normalized(); }
 
   private:
@@ -74,6 +88,7 @@ class LinearModel {
     std::optional<Eigen::MatrixXd> damping_;
     std::vector<PointMap> points_;
     Eigen::MatrixXd rigid_translation_;
+    bool rigid_translation_known_ = true;
     Eigen::MatrixXd sample_translation_;
     std::optional<Eigen::VectorXd> base_influence_;
     Eigen::Vector3d direction_ = Eigen::Vector3d::UnitZ();

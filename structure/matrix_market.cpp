@@ -14,7 +14,8 @@ namespace sb::structure {
 namespace {
 
 [[noreturn]] void fail(const std::filesystem::path& file, int line, const std::string& message) {
-    throw std::runtime_error(file.string() + ":" + std::to_string(line) + ": " + message);
+    const std::string place = line > 0 ? ":" + std::to_string(line) : std::string();
+    throw MatrixMarketError(file.string() + place + ": " + message);
 }
 
 std::string lower(std::string s) {
@@ -23,13 +24,10 @@ std::string lower(std::string s) {
     return s;
 }
 
-}  // namespace
-
-Eigen::SparseMatrix<double> read_matrix_market_sparse(const std::filesystem::path& file) {
-    std::ifstream in(file);
+/// Reads the header and the size line, leaving `in` at the first entry line.
+MatrixMarketSize read_header(std::ifstream& in, const std::filesystem::path& file, int& line) {
     if (!in) fail(file, 0, "cannot open file");
     std::string text;
-    int line = 0;
     if (!std::getline(in, text)) fail(file, 1, "empty file");
     ++line;
     std::istringstream header(lower(text));
@@ -45,26 +43,51 @@ Eigen::SparseMatrix<double> read_matrix_market_sparse(const std::filesystem::pat
     if (symmetry != "general" && symmetry != "symmetric") {
         fail(file, line, "only 'general' or 'symmetric' are supported, got '" + symmetry + "'");
     }
-    const bool symmetric = symmetry == "symmetric";
-
-    long rows = -1, cols = -1, entries = -1;
+    MatrixMarketSize size;
+    size.symmetric = symmetry == "symmetric";
+    size.rows = -1;
     while (std::getline(in, text)) {
         ++line;
         if (text.empty() || text[0] == '%' ||
             text.find_first_not_of(" \t\r") == std::string::npos) {
             continue;
         }
-        std::istringstream size(text);
-        if (!(size >> rows >> cols >> entries) || rows <= 0 || cols <= 0 || entries < 0) {
+        std::istringstream numbers(text);
+        if (!(numbers >> size.rows >> size.cols >> size.entries) || size.rows <= 0 ||
+            size.cols <= 0 || size.entries < 0) {
             fail(file, line, "expected 'rows columns entries' with positive sizes");
         }
         break;
     }
-    if (rows < 0) fail(file, line, "missing size line");
-    if (symmetric && rows != cols) fail(file, line, "a symmetric matrix must be square");
+    if (size.rows < 0) fail(file, line, "missing size line");
+    if (size.symmetric && size.rows != size.cols) {
+        fail(file, line, "a symmetric matrix must be square");
+    }
+    return size;
+}
+
+}  // namespace
+
+MatrixMarketSize read_matrix_market_size(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    int line = 0;
+    return read_header(in, file, line);
+}
+
+Eigen::SparseMatrix<double> read_matrix_market_sparse(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    int line = 0;
+    const MatrixMarketSize size = read_header(in, file, line);
+    const long rows = size.rows;
+    const long cols = size.cols;
+    const long entries = size.entries;
+    const bool symmetric = size.symmetric;
+    std::string text;
 
     std::vector<Eigen::Triplet<double>> triplets;
-    triplets.reserve(static_cast<std::size_t>(symmetric ? 2 * entries : entries));
+    // The size line is not trusted with the allocation: it grows with what is really read.
+    triplets.reserve(
+        static_cast<std::size_t>(std::min(symmetric ? 2 * entries : entries, 1L << 16)));
     long read = 0;
     while (read < entries && std::getline(in, text)) {
         ++line;

@@ -40,7 +40,10 @@ ModalBasis compute_modes(const LinearModel& model, const DampingSpec& damping, i
         }
         mode.modal_mass_kg =
             u_max > 0.0 ? 1.0 / (u_max * u_max) : std::numeric_limits<double>::infinity();
-        mode.effective_mass_kg = participation.row(r).transpose().cwiseAbs2();
+        mode.effective_mass_kg =
+            model.rigid_translation_known()
+                ? Eigen::Vector3d(participation.row(r).transpose().cwiseAbs2())
+                : Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
         if (model.damping()) {
             const Eigen::VectorXd phi = basis.shapes.col(r);
             mode.damping_ratio =

@@ -22,7 +22,8 @@ struct Mode {
     double modal_mass_kg = 0.0;
     /// Effective modal mass [kg] for rigid translation along x, y, z: (phi^T M r_d)^2 with the
     /// rigid translation vector r_d. Summed over all modes it equals r_d^T M r_d, the mass not
-    /// held by supports (Chopra, Dynamics of Structures, eq. 13.2.14).
+    /// held by supports (Chopra, Dynamics of Structures, eq. 13.2.14). NaN when the model
+    /// does not know its rigid translations (LinearModel::rigid_translation_known()).
     Eigen::Vector3d effective_mass_kg = Eigen::Vector3d::Zero();
 };
 

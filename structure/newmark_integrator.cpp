@@ -63,6 +63,17 @@ void NewmarkIntegrator::set_base_acceleration(double acceleration_m_s2) {
     base_acceleration_ = acceleration_m_s2;
 }
 
+void NewmarkIntegrator::set_base_motion(double displacement_m, double velocity_m_s,
+                                        double acceleration_m_s2) {
+    set_base_acceleration(acceleration_m_s2);
+    base_displacement_ = displacement_m;
+    base_velocity_ = velocity_m_s;
+}
+
+Eigen::Matrix<double, 6, 1> NewmarkIntegrator::base_motion_of(std::string_view point) const {
+    return model_->point(point).base_motion;
+}
+
 Eigen::VectorXd NewmarkIntegrator::current_load() const {
     Eigen::VectorXd f = point_load_sum_;
     if (model_->base_influence()) {
@@ -92,23 +103,24 @@ void NewmarkIntegrator::step() {
 }
 
 Eigen::Vector3d NewmarkIntegrator::displacement(std::string_view point) const {
-    return model_->point(point).op.topRows<3>() * x_;
+    return model_->point(point).op.topRows<3>() * x_ +
+           base_motion_of(point).head<3>() * base_displacement_;
 }
 Eigen::Vector3d NewmarkIntegrator::velocity(std::string_view point) const {
-    return model_->point(point).op.topRows<3>() * v_;
+    return model_->point(point).op.topRows<3>() * v_ +
+           base_motion_of(point).head<3>() * base_velocity_;
 }
 Eigen::Vector3d NewmarkIntegrator::acceleration(std::string_view point) const {
-    Eigen::Vector3d a = model_->point(point).op.topRows<3>() * a_;
-    if (model_->base_influence()) {
-        a += model_->point(point).op.topRows<3>() * *model_->base_influence() * base_acceleration_;
-    }
-    return a;
+    return model_->point(point).op.topRows<3>() * a_ +
+           base_motion_of(point).head<3>() * base_acceleration_;
 }
 Eigen::Vector3d NewmarkIntegrator::rotation(std::string_view point) const {
-    return model_->point(point).op.bottomRows<3>() * x_;
+    return model_->point(point).op.bottomRows<3>() * x_ +
+           base_motion_of(point).tail<3>() * base_displacement_;
 }
 Eigen::Vector3d NewmarkIntegrator::angular_velocity(std::string_view point) const {
-    return model_->point(point).op.bottomRows<3>() * v_;
+    return model_->point(point).op.bottomRows<3>() * v_ +
+           base_motion_of(point).tail<3>() * base_velocity_;
 }
 
 void NewmarkIntegrator::set_harmonic_steady_state(std::string_view point,

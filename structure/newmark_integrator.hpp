@@ -30,14 +30,20 @@ class NewmarkIntegrator {
     [[nodiscard]] double dt_s() const { return dt_; }
     [[nodiscard]] double time_s() const { return time_; }
 
+    /// Removes every point load and the base acceleration.
     void clear_loads();
     /// Force [N] and moment [N m] at a named point (replaces that point's previous load).
     void set_point_load(std::string_view point, const Eigen::Vector3d& force_n,
                         const Eigen::Vector3d& moment_nm);
-    /// Base acceleration along the excitation direction [m/s^2].
+    /// Base acceleration along the excitation direction [m/s^2] (relative outputs for
+    /// displacement and velocity, absolute acceleration).
     void set_base_acceleration(double acceleration_m_s2);
+    /// Base displacement [m], velocity [m/s] and acceleration [m/s^2]: every output absolute.
+    void set_base_motion(double displacement_m, double velocity_m_s, double acceleration_m_s2);
     void step();
 
+    /// Outputs at a named point; under base excitation they add PointMap::base_motion times
+    /// the base motion set (as ReducedModalModel does).
     [[nodiscard]] Eigen::Vector3d displacement(std::string_view point) const;
     [[nodiscard]] Eigen::Vector3d velocity(std::string_view point) const;
     [[nodiscard]] Eigen::Vector3d acceleration(std::string_view point) const;
@@ -54,6 +60,8 @@ class NewmarkIntegrator {
 
   private:
     [[nodiscard]] Eigen::VectorXd current_load() const;
+    /// PointMap::base_motion: 6 motions per unit base displacement (zero without a base).
+    [[nodiscard]] Eigen::Matrix<double, 6, 1> base_motion_of(std::string_view point) const;
 
     const LinearModel* model_;
     double dt_;
@@ -62,6 +70,8 @@ class NewmarkIntegrator {
     Eigen::LDLT<Eigen::MatrixXd> effective_;
     Eigen::VectorXd point_load_sum_;
     std::vector<std::pair<std::string, Eigen::VectorXd>> point_loads_;
+    double base_displacement_ = 0.0;
+    double base_velocity_ = 0.0;
     double base_acceleration_ = 0.0;
     Eigen::VectorXd x_, v_, a_;
 };

@@ -27,13 +27,11 @@ ReducedModalModel::ReducedModalModel(const LinearModel& model, const ModalBasis&
         const auto& op = model.point(name).op;
         names_.push_back(name);
         rows_.emplace_back(op * phi);
-        base_rows_.emplace_back(model.base_influence()
-                                    ? Eigen::Matrix<double, 6, 1>(op * *model.base_influence())
-                                    : Eigen::Matrix<double, 6, 1>::Zero());
+        base_rows_.emplace_back(model.point(name).base_motion);
     }
     point_loads_.assign(names_.size(), Eigen::Matrix<double, 6, 1>::Zero());
     loaded_.assign(names_.size(), false);
-    q_ = qd_ = qdd_ = load_start_ = Eigen::VectorXd::Zero(kept);
+    q_ = qd_ = qdd_ = load_start_ = load_end_ = Eigen::VectorXd::Zero(kept);
 }
 
 int ReducedModalModel::point_index(std::string_view name) const {
@@ -72,14 +70,13 @@ void ReducedModalModel::set_base_motion(double displacement_m, double velocity_m
     base_acceleration_ = acceleration_m_s2;
 }
 
-Eigen::VectorXd ReducedModalModel::current_modal_load() const {
+void ReducedModalModel::modal_load_into(Eigen::VectorXd& out) const {
     // Relative coordinates under base motion: M y'' + C y' + K y = f - M r a_b
     // (Chopra, Dynamics of Structures, eq. 9.4.9), projected on the modes.
-    Eigen::VectorXd f = -participation_ * base_acceleration_;
+    out = -base_acceleration_ * participation_;
     for (std::size_t i = 0; i < names_.size(); ++i) {
-        if (loaded_[i]) f.noalias() += rows_[i].transpose() * point_loads_[i];
+        if (loaded_[i]) out.noalias() += rows_[i].transpose() * point_loads_[i];
     }
-    return f;
 }
 
 void ReducedModalModel::update_acceleration() {
@@ -89,16 +86,16 @@ void ReducedModalModel::update_acceleration() {
 }
 
 void ReducedModalModel::step() {
-    const Eigen::VectorXd load_end = current_modal_load();
+    modal_load_into(load_end_);
     for (int r = 0; r < modes(); ++r) {
         const auto& s = steps_[static_cast<std::size_t>(r)];
         const Eigen::Vector2d x(q_(r), qd_(r));
         const Eigen::Vector2d next =
-            s.phi * x + s.gamma0 * load_start_(r) + s.gamma1 * (load_end(r) - load_start_(r));
+            s.phi * x + s.gamma0 * load_start_(r) + s.gamma1 * (load_end_(r) - load_start_(r));
         q_(r) = next(0);
         qd_(r) = next(1);
     }
-    load_start_ = load_end;
+    load_start_.swap(load_end_);
     time_ += dt_;
     update_acceleration();
 }
@@ -201,7 +198,7 @@ void ReducedModalModel::set_state(const Eigen::VectorXd& q, const Eigen::VectorX
     q_ = q;
     qd_ = q_dot;
     time_ = time_s;
-    load_start_ = current_modal_load();
+    modal_load_into(load_start_);
     update_acceleration();
 }
 

@@ -20,8 +20,9 @@ namespace sb::structure {
 /// step; the load at its start is the previous step's end load, and the step interpolates
 /// linearly between them. Loads persist until changed or cleared.
 ///
-/// Outputs at named points (structure frame): with base excitation, translations add the
-/// quasi-static base motion P r u_b; the acceleration is absolute whenever the base
+/// Outputs at named points (structure frame): with base excitation, they add the quasi-static
+/// base motion (PointMap::base_motion: P r u_b, and u_b itself on a point of the moving
+/// support); the acceleration is absolute whenever the base
 /// acceleration is set, displacement and velocity only if set_base_motion() supplied them.
 class ReducedModalModel {
   public:
@@ -90,7 +91,9 @@ class ReducedModalModel {
     void set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& q_dot, double time_s);
 
   private:
-    [[nodiscard]] Eigen::VectorXd current_modal_load() const;
+    /// Writes the modal load of the loads set now into `out` (sized modes()); no allocation,
+    /// since step() runs at the DEM time step.
+    void modal_load_into(Eigen::VectorXd& out) const;
     void update_acceleration();
 
     double dt_;
@@ -101,13 +104,14 @@ class ReducedModalModel {
     Eigen::VectorXd participation_;  ///< phi^T M r per mode (base excitation), else zeros
     std::vector<std::string> names_;
     std::vector<Eigen::Matrix<double, 6, Eigen::Dynamic>> rows_;  ///< op * Phi per point
-    std::vector<Eigen::Matrix<double, 6, 1>> base_rows_;          ///< op * r per point
+    std::vector<Eigen::Matrix<double, 6, 1>> base_rows_;          ///< base_motion per point
     std::vector<Eigen::Matrix<double, 6, 1>> point_loads_;
     std::vector<bool> loaded_;
     double base_displacement_ = 0.0;
     double base_velocity_ = 0.0;
     double base_acceleration_ = 0.0;
     Eigen::VectorXd load_start_;  ///< modal load at the start of the next step
+    Eigen::VectorXd load_end_;    ///< work vector of step(): modal load at the end of the step
     Eigen::VectorXd q_, qd_, qdd_;
 };
 

@@ -44,9 +44,27 @@ Violations BeamSpec::validate() const {
     if (shear_modulus_pa) {
         require_positive(out, "shear_modulus_pa", *shear_modulus_pa, "shear modulus [Pa]");
     }
+    // The frame puts y along the longer side, so z (thickness) is the weak bending direction
+    // the shaker drives; a beam driven in its stiff direction keeps this frame and sets
+    // excitation.direction = [0, 1, 0].
+    if (std::isfinite(width_m) && std::isfinite(thickness_m) && width_m > 0.0 &&
+        thickness_m > width_m) {
+        out.push_back({"thickness_m", format_value(thickness_m),
+                       "must be <= width_m = " + format_value(width_m),
+                       "section side along z, the shorter one; drive the stiff direction with "
+                       "excitation.direction = [0, 1, 0]"});
+    }
     require_at_least(out, "elements", min_elements, 1, "minimum number of beam elements");
-    // Positions are checked against the length only when the length itself is usable.
-    const double hi = (std::isfinite(length_m) && length_m > 0.0) ? length_m : 0.0;
+    // Positions are checked against the length only when the length itself is usable;
+    // otherwise only their sign, so that one bad length does not condemn every position.
+    const bool length_usable = std::isfinite(length_m) && length_m > 0.0;
+    const auto require_on_beam = [&](const std::string& key, double x, std::string_view meaning) {
+        if (length_usable) {
+            require_in_range(out, key, x, 0.0, length_m, meaning);
+        } else {
+            require_non_negative(out, key, x, meaning);
+        }
+    };
 
     if (supports.empty()) {
         out.push_back({"supports", "(none)", "must have at least one support",
@@ -56,7 +74,7 @@ Violations BeamSpec::validate() const {
     for (const auto& s : supports) {
         const std::string key = "supports." + s.name;
         require_unique(out, support_names, key, s.name, "support name");
-        require_in_range(out, key + ".x_m", s.x_m, 0.0, hi, "support position along the beam [m]");
+        require_on_beam(key + ".x_m", s.x_m, "support position along the beam [m]");
         if (s.kind == SupportKind::elastic) {
             require_non_negative_vector(out, key + ".translational_stiffness_n_per_m",
                                         s.translational_stiffness_n_per_m,
@@ -70,7 +88,7 @@ Violations BeamSpec::validate() const {
     for (const auto& p : points) {
         const std::string key = "points." + p.name;
         require_unique(out, point_names, key, p.name, "point name");
-        require_in_range(out, key, p.x_m, 0.0, hi, "point position along the beam [m]");
+        require_on_beam(key, p.x_m, "point position along the beam [m]");
     }
     std::set<std::string> mass_names;
     for (std::size_t i = 0; i < masses.size(); ++i) {
@@ -79,7 +97,7 @@ Violations BeamSpec::validate() const {
         if (!m.name.empty() && !mass_names.insert(m.name).second) {
             out.push_back({key + ".name", m.name, "must be unique", "lumped mass name"});
         }
-        require_in_range(out, key + ".x_m", m.x_m, 0.0, hi, "mass position along the beam [m]");
+        require_on_beam(key + ".x_m", m.x_m, "mass position along the beam [m]");
         require_positive(out, key + ".mass_kg", m.mass_kg, "lumped mass [kg]");
         require_non_negative_vector(out, key + ".inertia_kg_m2", m.inertia_kg_m2,
                                     "rotary inertia about the mass's centre of gravity [kg m^2]");
@@ -150,12 +168,16 @@ Violations MatrixSpec::validate() const {
 Violations DampingSpec::validate() const {
     Violations out;
     if (model == Model::modal) {
-        const double below_one = std::nextafter(1.0, 0.0);
-        require_in_range(out, "default_ratio", default_ratio, 0.0, below_one,
-                         "damping ratio of modes not listed [-]");
+        const auto require_ratio = [&](const std::string& key, double ratio,
+                                       const std::string& meaning) {
+            if (!(std::isfinite(ratio) && ratio >= 0.0 && ratio < 1.0)) {
+                out.push_back({key, format_value(ratio), "must be in [0, 1)", meaning});
+            }
+        };
+        require_ratio("default_ratio", default_ratio, "damping ratio of modes not listed [-]");
         for (std::size_t i = 0; i < modal_ratios.size(); ++i) {
-            require_in_range(out, "modal_ratios[" + std::to_string(i) + "]", modal_ratios[i], 0.0,
-                             below_one, "damping ratio of mode " + std::to_string(i + 1));
+            require_ratio("modal_ratios[" + std::to_string(i) + "]", modal_ratios[i],
+                          "damping ratio of mode " + std::to_string(i + 1));
         }
     } else {
         require_non_negative(out, "alpha_per_s", alpha_per_s,

@@ -89,6 +89,10 @@ struct MatrixSpec {
     /// Named DOFs: name -> zero-based row index. A named point "p" is made of the DOFs named
     /// "p.x", "p.y", "p.z" (and optionally "p.rx", "p.ry", "p.rz"), whichever exist.
     std::vector<std::pair<std::string, int>> named_dofs;
+    /// Optional n x 3 Matrix Market file: column d holds the DOF values of a unit rigid
+    /// translation along axis d (for effective masses). Without it the rigid translations are
+    /// built from the named DOFs, which is only complete when every row is named.
+    std::filesystem::path rigid_body_file;
 
     [[nodiscard]] Violations validate() const;
 };

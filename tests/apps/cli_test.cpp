@@ -14,6 +14,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "cli_helpers.hpp"
 
@@ -54,6 +55,321 @@ TEST(Cli, ABadConfigGivesFileLineKeyAndExitCodeTwo) {
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_NE(r.output.find(file.string() + ":4:12: structure.beam.length_m = -1: must be > 0"),
               std::string::npos)
+        << r.output;
+}
+
+/// The beam of the README's walk-through and of docs/config.md, line by line.
+const std::string kBeamConfig = R"(
+[campaign]
+name = "t"
+
+[structure]
+kind = "beam"
+
+[structure.beam]
+length_m = 0.5
+width_m = 0.05
+thickness_m = 0.003
+density_kg_m3 = 2700.0
+youngs_modulus_pa = 70e9
+
+[structure.beam.supports.root]
+x_m = 0.0
+kind = "clamped"
+
+[structure.beam.points]
+shaker = 0.1
+tip = 0.5
+
+[[structure.beam.masses]]
+point = "tip"
+mass_kg = 0.01
+
+[structure.excitation]
+point = "shaker"
+)";
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return at == std::string::npos ? text : text.replace(at, from.size(), to);
+}
+
+/// Runs `shakerbench ARGS` in `dir`, so that files named relative to it print as written.
+Result run_in(const std::filesystem::path& dir, const std::string& arguments) {
+    const std::string command =
+        "cd '" + dir.string() + "' && " + std::string(SB_CLI) + " " + arguments + " 2>&1";
+    Result result;
+    FILE* pipe = popen(command.c_str(), "r");
+    if (pipe == nullptr) {
+        return result;
+    }
+    std::array<char, 4096> buffer{};
+    while (fgets(buffer.data(), static_cast<int>(buffer.size()), pipe) != nullptr) {
+        result.output += buffer.data();
+    }
+    const int status = pclose(pipe);
+    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return result;
+}
+
+/// `shakerbench modes NAME` on `text` written to NAME in a fresh directory.
+Result modes_on(const std::string& test, const std::string& name, const std::string& text) {
+    const auto dir = temp_dir(test);
+    std::ofstream(dir / name) << text;
+    return run_in(dir, "modes " + name + " --out out");
+}
+
+/// Every line of `output` that names `file`.
+std::vector<std::string> lines_naming(const std::string& output, const std::string& file) {
+    std::vector<std::string> lines;
+    std::istringstream in(output);
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind(file + ":", 0) == 0) lines.push_back(line);
+    }
+    return lines;
+}
+
+TEST(CliBadConfig, ANegativeLengthIsReportedAtItsValueAndNothingElseIsBlamed) {
+    const auto r = modes_on("negative-length", "bad.toml",
+                            replaced(kBeamConfig, "length_m = 0.5", "length_m = -0.5"));
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_EQ(lines_naming(r.output, "bad.toml"),
+              std::vector<std::string>{
+                  "bad.toml:9:12: structure.beam.length_m = -0.5: must be > 0 (beam length [m])"})
+        << r.output;
+}
+
+TEST(CliBadConfig, AnUnknownKeyIsReportedAsUnknown) {
+    const auto r =
+        modes_on("unknown-key", "bad.toml",
+                 replaced(kBeamConfig, "width_m = 0.05", "width_m = 0.05\nwdith_m = 0.05"));
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_EQ(lines_naming(r.output, "bad.toml"),
+              std::vector<std::string>{
+                  "bad.toml:11:11: structure.beam.wdith_m = 0.05: unknown key (see docs/config.md "
+                  "for the keys of [structure.beam])"})
+        << r.output;
+}
+
+TEST(CliBadConfig, AMassOutsideTheBeamNamesTheAllowedRange) {
+    const auto r =
+        modes_on("mass-outside", "bad.toml", replaced(kBeamConfig, "point = \"tip\"", "x_m = 0.7"));
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_EQ(lines_naming(r.output, "bad.toml"),
+              std::vector<std::string>{"bad.toml:24:7: structure.beam.masses[0].x_m = 0.7: must be "
+                                       "in [0, 0.5] (mass position along the beam [m])"})
+        << r.output;
+}
+
+TEST(CliBadConfig, AMissingBeamSectionIsReportedWithTheOtherErrorsOfTheStructure) {
+    std::string text = kBeamConfig.substr(0, kBeamConfig.find("[structure.beam]\n")) +
+                       kBeamConfig.substr(kBeamConfig.find("[structure.excitation]"));
+    text = replaced(text, "kind = \"beam\"", "kind = \"beam\"\nmodes = 0");
+    const auto r = modes_on("missing-section", "bad.toml", text);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_EQ(lines_naming(r.output, "bad.toml"),
+              (std::vector<std::string>{
+                  "bad.toml:5:1: structure.beam: is required (the beam of a structure of kind "
+                  "\"beam\")",
+                  "bad.toml:7:9: structure.modes = 0: must be >= 1 (modes kept in the reduced "
+                  "modal model)"}))
+        << r.output;
+}
+
+TEST(CliBadConfig, AMissingStructureIsReportedAtTheTopOfTheFile) {
+    const auto r = modes_on("missing-structure", "bad.toml", "[campaign]\nname = \"t\"\n");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_EQ(
+        lines_naming(r.output, "bad.toml"),
+        std::vector<std::string>{"bad.toml:1:1: structure: is required (the structure under test)"})
+        << r.output;
+}
+
+TEST(CliBadConfig, AWrongTypeNamesTheTypeExpected) {
+    const auto r =
+        modes_on("wrong-type", "bad.toml",
+                 replaced(kBeamConfig, "density_kg_m3 = 2700.0", "density_kg_m3 = \"steel\""));
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_EQ(lines_naming(r.output, "bad.toml"),
+              std::vector<std::string>{"bad.toml:12:17: structure.beam.density_kg_m3 = \"steel\": "
+                                       "must be a number (beam density [kg/m^3])"})
+        << r.output;
+}
+
+TEST(CliBadConfig, TheReadmeExamplePrintsWhatTheReadmeShows) {
+    std::string text = replaced(kBeamConfig, "length_m = 0.5", "length_m = -0.5");
+    text = replaced(text, "width_m = 0.05", "width_m = 0.05\nwdith_m = 0.05");
+    const auto r = modes_on("readme", "my.toml", text);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    // README.md, "Copy a config and change it".
+    EXPECT_EQ(r.output,
+              "my.toml:9:12: structure.beam.length_m = -0.5: must be > 0 (beam length [m])\n"
+              "my.toml:11:11: structure.beam.wdith_m = 0.05: unknown key (see docs/config.md for "
+              "the keys of [structure.beam])\n"
+              "shakerbench: 2 errors in the config; nothing was run.\n");
+}
+
+TEST(CliBadConfig, ANegativeSeedIsAnError) {
+    const auto r = modes_on("seed", "bad.toml",
+                            replaced(kBeamConfig, "name = \"t\"", "name = \"t\"\nseed = -3"));
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_EQ(lines_naming(r.output, "bad.toml"),
+              std::vector<std::string>{
+                  "bad.toml:4:8: campaign.seed = -3: must be >= 0 (seed of the particle filling)"})
+        << r.output;
+}
+
+TEST(CliBadConfig, ASectionThickerThanItIsWideIsAnError) {
+    const auto r = modes_on("thick", "bad.toml",
+                            replaced(kBeamConfig, "thickness_m = 0.003", "thickness_m = 0.06"));
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_EQ(lines_naming(r.output, "bad.toml"),
+              std::vector<std::string>{
+                  "bad.toml:11:15: structure.beam.thickness_m = 0.06: must be <= width_m = 0.05 "
+                  "(section side along z, the shorter one; drive the stiff direction with "
+                  "excitation.direction = [0, 1, 0])"})
+        << r.output;
+}
+
+/// A fixed-free chain of three 1 kg masses and 100 N/m springs, as Matrix Market files in
+/// `dir/sub`, and a config naming `dofs` (TOML lines) there.
+void write_chain(const std::filesystem::path& dir, const std::string& dofs,
+                 const std::string& extra_matrix_keys = "", const std::string& point = "c") {
+    std::filesystem::create_directories(dir / "sub");
+    std::ofstream(dir / "sub" / "m.mtx")
+        << "%%MatrixMarket matrix coordinate real symmetric\n3 3 3\n1 1 1.0\n2 2 1.0\n3 3 1.0\n";
+    std::ofstream(dir / "sub" / "k.mtx")
+        << "%%MatrixMarket matrix coordinate real symmetric\n3 3 5\n1 1 200.0\n2 1 -100.0\n"
+           "2 2 200.0\n3 2 -100.0\n3 3 100.0\n";
+    std::ofstream(dir / "sub" / "chain.toml")
+        << "[campaign]\nname = \"chain\"\n\n[structure]\nkind = \"matrix\"\nmodes = 3\n\n"
+           "[structure.matrix]\nmass_file = \"m.mtx\"\nstiffness_file = \"k.mtx\"\n"
+        << extra_matrix_keys << "\n[structure.matrix.dofs]\n"
+        << dofs << "\n[structure.excitation]\npoint = \"" << point << "\"\n";
+}
+
+struct ModeLine {
+    double frequency_hz = 0.0;
+    std::string effective_z;
+};
+
+/// The mode table `shakerbench modes` prints: frequency and z effective mass per mode.
+std::vector<ModeLine> mode_lines(const std::string& output) {
+    std::vector<ModeLine> out;
+    std::istringstream in(output);
+    for (std::string line; std::getline(in, line);) {
+        std::istringstream fields(line);
+        int mode = 0;
+        ModeLine m;
+        double damping = 0.0, modal = 0.0;
+        std::string ex, slash1, ey, slash2, ez;
+        if (fields >> mode >> m.frequency_hz >> damping >> modal >> ex >> slash1 >> ey >> slash2 >>
+                ez &&
+            slash1 == "/" && slash2 == "/") {
+            m.effective_z = ez;
+            out.push_back(m);
+        }
+    }
+    return out;
+}
+
+/// Fixed-free chain of N = 3 masses m = 1 kg and springs k = 100 N/m: the eigenvalues of its
+/// tridiagonal (k/m) [2 -1; -1 2 -1; -1 1] are w_j = 2 sqrt(k/m) sin((2j - 1) pi / (2 (2N + 1))).
+double chain_frequency_hz(int j) {
+    return 2.0 * 10.0 * std::sin((2 * j - 1) * std::numbers::pi / 14.0) / (2.0 * std::numbers::pi);
+}
+
+constexpr double kPrintedHz = 5e-5;  // the table prints four decimals
+
+TEST(CliMatrixImport, ModesOfAChainImportedThroughARelativeConfigPathAreTheAnalyticOnes) {
+    const auto dir = temp_dir("matrix-chain");
+    write_chain(dir, "\"a.z\" = 0\n\"b.z\" = 1\n\"c.z\" = 2\n");
+    const auto r = run_in(dir, "modes sub/chain.toml --out out");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const auto modes = mode_lines(r.output);
+    ASSERT_EQ(modes.size(), 3u) << r.output;
+    double effective_sum = 0.0;
+    for (int j = 1; j <= 3; ++j) {
+        EXPECT_NEAR(modes[static_cast<std::size_t>(j - 1)].frequency_hz, chain_frequency_hz(j),
+                    kPrintedHz)
+            << r.output;
+        effective_sum += std::stod(modes[static_cast<std::size_t>(j - 1)].effective_z);
+    }
+    EXPECT_NEAR(effective_sum, 3.0, 3 * 5e-6) << r.output;  // every mass moves along z
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / "chain-modes.csv"));
+}
+
+TEST(CliMatrixImport, EffectiveMassesOfAPartlyNamedImportAreNotGuessed) {
+    const auto dir = temp_dir("matrix-partly-named");
+    write_chain(dir, "\"a.z\" = 0\n\"b.z\" = 1\n", "", "b");
+    const auto r = run_in(dir, "modes sub/chain.toml --out out");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const auto modes = mode_lines(r.output);
+    ASSERT_EQ(modes.size(), 3u) << r.output;
+    for (const auto& m : modes) EXPECT_EQ(m.effective_z, "n/a") << r.output;
+    EXPECT_NE(r.output.find("structure.matrix.rigid_body_file"), std::string::npos) << r.output;
+}
+
+TEST(CliMatrixImport, ARigidBodyFileGivesTheEffectiveMassesOfAPartlyNamedImport) {
+    const auto dir = temp_dir("matrix-rigid-body");
+    write_chain(dir, "\"a.z\" = 0\n\"b.z\" = 1\n", "rigid_body_file = \"r.mtx\"\n", "b");
+    std::ofstream(dir / "sub" / "r.mtx")
+        << "%%MatrixMarket matrix coordinate real general\n3 3 3\n1 3 1.0\n2 3 1.0\n3 3 1.0\n";
+    const auto r = run_in(dir, "modes sub/chain.toml --out out");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const auto modes = mode_lines(r.output);
+    ASSERT_EQ(modes.size(), 3u) << r.output;
+    double effective_sum = 0.0;
+    for (const auto& m : modes) effective_sum += std::stod(m.effective_z);
+    EXPECT_NEAR(effective_sum, 3.0, 3 * 5e-6) << r.output;
+}
+
+TEST(CliMatrixImport, ADofRowBeyondTheMatrixIsReportedAtItsLineWhenTheConfigLoads) {
+    const auto dir = temp_dir("matrix-row");
+    write_chain(dir, "\"a.z\" = 0\n\"b.z\" = 3\n\"c.z\" = 2\n");
+    const auto r = run_in(dir, "modes sub/chain.toml --out out");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_EQ(lines_naming(r.output, "sub/chain.toml"),
+              std::vector<std::string>{"sub/chain.toml:14:9: structure.matrix.dofs.b.z = 3: must "
+                                       "be < 3, the rows of mass_file (zero-based row of a named "
+                                       "DOF)"})
+        << r.output;
+}
+
+TEST(CliMatrixImport, AMissingMatrixFileIsAConfigError) {
+    const auto dir = temp_dir("matrix-missing");
+    write_chain(dir, "\"a.z\" = 0\n", "", "a");
+    std::filesystem::remove(dir / "sub" / "m.mtx");
+    const auto r = run_in(dir, "modes sub/chain.toml --out out");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    const auto lines = lines_naming(r.output, "sub/chain.toml");
+    ASSERT_EQ(lines.size(), 1u) << r.output;
+    EXPECT_EQ(lines[0].rfind("sub/chain.toml:9:13: structure.matrix.mass_file = \"m.mtx\": cannot "
+                             "be read: ",
+                             0),
+              0u)
+        << r.output;
+}
+
+TEST(CliMatrixImport, BadMatrixContentIsBadInputNamingTheFileAndLine) {
+    const auto dir = temp_dir("matrix-content");
+    write_chain(dir, "\"a.z\" = 0\n", "", "a");
+    std::ofstream(dir / "sub" / "k.mtx")
+        << "%%MatrixMarket matrix coordinate real symmetric\n3 3 3\n1 1 1.0\n2 2 x\n3 3 1.0\n";
+    const auto r = run_in(dir, "modes sub/chain.toml --out out");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("k.mtx:4: expected 'row column value'"), std::string::npos) << r.output;
+}
+
+TEST(CliMatrixImport, AMassMatrixThatIsNotPositiveDefiniteIsBadInput) {
+    const auto dir = temp_dir("matrix-indefinite");
+    write_chain(dir, "\"a.z\" = 0\n", "", "a");
+    std::ofstream(dir / "sub" / "m.mtx")
+        << "%%MatrixMarket matrix coordinate real symmetric\n3 3 3\n1 1 1.0\n2 2 -1.0\n3 3 1.0\n";
+    const auto r = run_in(dir, "modes sub/chain.toml --out out");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("m.mtx: the mass matrix must be positive definite"), std::string::npos)
         << r.output;
 }
 

@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <string>
+#include <utility>
 
 #include "bench/config_errors.hpp"
 
@@ -134,6 +137,104 @@ TEST(CampaignConfig, TheBuiltInConfigLoads) {
     const auto config = load_campaign_config_text(builtin_config_text(), kBuiltinConfigName);
     EXPECT_EQ(config.structure.kind, structure::StructureSpec::Kind::beam);
     EXPECT_GE(config.structure.beam.masses.size(), 6u);
+}
+
+TEST(CampaignConfig, AMissingBeamTableStillLetsTheOtherStructureErrorsThrough) {
+    const auto errors = errors_of(
+        "[structure]\nkind = \"beam\"\nmodes = 0\n[structure.damping]\ndefault_ratio = 1.5\n"
+        "colour = \"red\"\n");
+    ASSERT_EQ(errors.size(), 4u);
+    EXPECT_EQ(errors[0],
+              "bad.toml:1:1: structure.beam: is required (the beam of a structure of "
+              "kind \"beam\")");
+    EXPECT_EQ(errors[1].rfind("bad.toml:3:9: structure.modes = 0: must be >= 1", 0), 0u);
+    EXPECT_EQ(errors[2].rfind("bad.toml:5:17: structure.damping.default_ratio = 1.5: must be in "
+                              "[0, 1)",
+                              0),
+              0u);
+    EXPECT_EQ(errors[3].rfind("bad.toml:6:10: structure.damping.colour = \"red\": unknown key", 0),
+              0u);
+}
+
+TEST(CampaignConfig, ANegativeSeedIsAnErrorNotClampedToZero) {
+    const auto errors = errors_of(replaced(kValidBeam, "name = \"t\"", "name = \"t\"\nseed = -1"));
+    ASSERT_EQ(errors.size(), 1u);
+    EXPECT_EQ(errors[0],
+              "bad.toml:4:8: campaign.seed = -1: must be >= 0 (seed of the particle filling)");
+}
+
+TEST(CampaignConfig, ASectionThickerThanItIsWideIsAnError) {
+    const auto errors =
+        errors_of(replaced(kValidBeam, "thickness_m = 0.003", "thickness_m = 0.08"));
+    ASSERT_EQ(errors.size(), 1u);
+    EXPECT_EQ(
+        errors[0].rfind(
+            "bad.toml:11:15: structure.beam.thickness_m = 0.08: must be <= width_m = 0.05", 0),
+        0u)
+        << errors[0];
+}
+
+/// A two-DOF import written to a fresh folder; returns the config text naming it.
+std::filesystem::path write_two_dof_matrices(const std::string& name) {
+    const auto dir = std::filesystem::temp_directory_path() / ("sb_bench_matrix_" + name);
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "m.mtx")
+        << "%%MatrixMarket matrix coordinate real symmetric\n2 2 2\n1 1 1.0\n2 2 1.0\n";
+    std::ofstream(dir / "k.mtx") << "%%MatrixMarket matrix coordinate real symmetric\n2 2 3\n"
+                                    "1 1 200.0\n2 1 -100.0\n2 2 100.0\n";
+    return dir;
+}
+
+std::string matrix_config(const std::string& dofs) {
+    return "[structure]\nkind = \"matrix\"\n\n[structure.matrix]\nmass_file = \"m.mtx\"\n"
+           "stiffness_file = \"k.mtx\"\n\n[structure.matrix.dofs]\n" +
+           dofs + "\n[structure.excitation]\npoint = \"tip\"\n";
+}
+
+TEST(CampaignConfig, AMatrixImportLoadsWithItsFilesNextToTheConfig) {
+    const auto dir = write_two_dof_matrices("good");
+    std::ofstream(dir / "c.toml") << matrix_config("\"base.z\" = 0\n\"tip.z\" = 1\n");
+    const auto config = load_campaign_config(dir / "c.toml");
+    EXPECT_EQ(config.structure.kind, structure::StructureSpec::Kind::matrix);
+    EXPECT_EQ(config.structure.matrix.mass_file, dir / "m.mtx");
+    EXPECT_TRUE(config.structure.matrix.mass_file.is_absolute());
+    ASSERT_EQ(config.structure.matrix.named_dofs.size(), 2u);
+    EXPECT_EQ(config.structure.matrix.named_dofs[1], (std::pair<std::string, int>{"tip.z", 1}));
+}
+
+TEST(CampaignConfig, AMatrixDofBeyondTheMatrixIsReportedAtItsLine) {
+    const auto dir = write_two_dof_matrices("row");
+    const auto file = dir / "c.toml";
+    std::ofstream(file) << matrix_config("\"base.z\" = 0\n\"tip.z\" = 2\n");
+    try {
+        (void)load_campaign_config(file);
+        FAIL() << "the config was accepted";
+    } catch (const ConfigException& e) {
+        ASSERT_EQ(e.errors().size(), 1u);
+        EXPECT_EQ(e.errors()[0].format(),
+                  file.string() +
+                      ":10:11: structure.matrix.dofs.tip.z = 2: must be < 2, the rows of "
+                      "mass_file (zero-based row of a named DOF)");
+    }
+}
+
+TEST(CampaignConfig, MatricesOfDifferentSizesAreReportedAtTheStiffnessFile) {
+    const auto dir = write_two_dof_matrices("sizes");
+    std::ofstream(dir / "k.mtx")
+        << "%%MatrixMarket matrix coordinate real symmetric\n3 3 1\n1 1 200.0\n";
+    const auto file = dir / "c.toml";
+    std::ofstream(file) << matrix_config("\"tip.z\" = 1\n");
+    try {
+        (void)load_campaign_config(file);
+        FAIL() << "the config was accepted";
+    } catch (const ConfigException& e) {
+        ASSERT_EQ(e.errors().size(), 1u);
+        EXPECT_EQ(e.errors()[0].format(),
+                  file.string() +
+                      ":6:18: structure.matrix.stiffness_file = \"k.mtx\": must hold 2 x 2 like "
+                      "mass_file, holds 3 x 3 (Matrix Market stiffness matrix)");
+    }
 }
 
 }  // namespace

@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "structure/linear_model.hpp"
 #include "structure/modal_analysis.hpp"
@@ -57,6 +60,81 @@ TEST(MatrixModel, TwoDofChainFromFilesHasItsAnalyticFrequencies) {
     EXPECT_NEAR(2.0 * 3.14159265358979323846 * basis.modes[0].frequency_hz,
                 10.0 * std::sqrt((3.0 - std::sqrt(5.0)) / 2.0), 1e-10);
     EXPECT_EQ(model.point("tip").op(2, 1), 1.0);
+}
+
+TEST(MatrixMarket, TheSizeComesFromTheHeaderAlone) {
+    const auto p = write("size.mtx",
+                         "%%MatrixMarket matrix coordinate real general\n% comment\n4 3 1\n"
+                         "9 9 not even read\n");
+    const MatrixMarketSize size = read_matrix_market_size(p);
+    EXPECT_EQ(size.rows, 4);
+    EXPECT_EQ(size.cols, 3);
+    EXPECT_FALSE(size.symmetric);
+    EXPECT_THROW((void)read_matrix_market_size(p.string() + ".missing"), MatrixMarketError);
+}
+
+/// A three-DOF chain (1 kg masses, 100 N/m springs, fixed-free) in the temp folder.
+StructureSpec chain_spec(const std::vector<std::pair<std::string, int>>& dofs) {
+    write("chain_m.mtx",
+          "%%MatrixMarket matrix coordinate real symmetric\n3 3 3\n1 1 1.0\n2 2 1.0\n3 3 1.0\n");
+    write("chain_k.mtx",
+          "%%MatrixMarket matrix coordinate real symmetric\n3 3 5\n1 1 200.0\n2 1 -100.0\n"
+          "2 2 200.0\n3 2 -100.0\n3 3 100.0\n");
+    StructureSpec spec;
+    spec.kind = StructureSpec::Kind::matrix;
+    spec.matrix.mass_file = "sb_structure_chain_m.mtx";
+    spec.matrix.stiffness_file = "sb_structure_chain_k.mtx";
+    spec.matrix.named_dofs = dofs;
+    spec.excitation.point = dofs.front().first.substr(0, dofs.front().first.find('.'));
+    return spec;
+}
+
+TEST(MatrixModel, EffectiveMassesOfAFullyNamedImportSumToItsMass) {
+    const StructureSpec spec = chain_spec({{"a.z", 0}, {"b.z", 1}, {"c.z", 2}});
+    const LinearModel model = build_linear_model(spec, std::filesystem::temp_directory_path());
+    EXPECT_TRUE(model.rigid_translation_known());
+    const ModalBasis basis = compute_modes(model, spec.damping, 3);
+    double sum = 0.0;
+    for (const auto& m : basis.modes) sum += m.effective_mass_kg.z();
+    EXPECT_NEAR(sum, 3.0, 1e-12);
+}
+
+TEST(MatrixModel, EffectiveMassesOfAPartlyNamedImportAreUnknownNotWrong) {
+    // Row 2 is not named: whether it translates or turns in a rigid motion is unknown, and a
+    // rigid vector with 0 there would give effective masses summing to less than the mass.
+    const StructureSpec spec = chain_spec({{"a.z", 0}, {"b.z", 1}});
+    const LinearModel model = build_linear_model(spec, std::filesystem::temp_directory_path());
+    EXPECT_FALSE(model.rigid_translation_known());
+    const ModalBasis basis = compute_modes(model, spec.damping, 3);
+    for (const auto& m : basis.modes) EXPECT_TRUE(m.effective_mass_kg.array().isNaN().all());
+}
+
+TEST(MatrixModel, ARigidBodyFileCompletesAPartlyNamedImport) {
+    StructureSpec spec = chain_spec({{"a.z", 0}, {"b.z", 1}});
+    write("chain_r.mtx",
+          "%%MatrixMarket matrix coordinate real general\n3 3 3\n1 3 1.0\n2 3 1.0\n3 3 1.0\n");
+    spec.matrix.rigid_body_file = "sb_structure_chain_r.mtx";
+    const LinearModel model = build_linear_model(spec, std::filesystem::temp_directory_path());
+    EXPECT_TRUE(model.rigid_translation_known());
+    const ModalBasis basis = compute_modes(model, spec.damping, 3);
+    double sum = 0.0;
+    for (const auto& m : basis.modes) sum += m.effective_mass_kg.z();
+    EXPECT_NEAR(sum, 3.0, 1e-12);
+}
+
+TEST(MatrixModel, AMassMatrixThatIsNotPositiveDefiniteIsRejectedWithItsFile) {
+    StructureSpec spec = chain_spec({{"a.z", 0}});
+    write("chain_m.mtx",
+          "%%MatrixMarket matrix coordinate real symmetric\n3 3 2\n1 1 1.0\n3 3 1.0\n");
+    try {
+        (void)build_linear_model(spec, std::filesystem::temp_directory_path());
+        FAIL() << "no exception";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("sb_structure_chain_m.mtx: the mass matrix must be "
+                                             "positive definite"),
+                  std::string::npos)
+            << e.what();
+    }
 }
 
 }  // namespace

@@ -4,9 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <complex>
 
 #include "beam_fixtures.hpp"
+#include "response_helpers.hpp"
+#include "structure/beam_model.hpp"
 #include "structure/frf.hpp"
 #include "structure/newmark_integrator.hpp"
 
@@ -15,17 +18,28 @@ namespace {
 
 using namespace std::complex_literals;
 
-// Reduced model: exact up to the linear interpolation of a sine within a step, which changes
-// the load by ~(W dt)^2/12 = 2e-5 at 400 steps per period: far below 0.5 %.
-constexpr double kReducedTolerance = 5e-3;
-// Newmark's period error (W dt)^2/12 = 3e-6 at 1000 steps per period, amplified near
-// resonance by 1/(2 zeta) = 100, plus the higher modes that the FRF truncates: below 1 %.
-constexpr double kNewmarkTolerance = 1e-2;
+// Reduced model started from rest: exact for loads linear within a step, so its error is the
+// linear interpolation of the sine, whose fundamental shrinks by ~(W dt)^2/12 = 2e-5 at 400
+// steps per period, plus the transient left after settling (kResidualTransient). The issue
+// asks for 0.5 %; the model's own error budget is 3e-5, so 2e-4 still leaves room for
+// round-off while catching any real defect.
+constexpr double kReducedTolerance = 2e-4;
+constexpr double kResidualTransient = 1e-5;  // transient left when the extraction starts
+constexpr int kReducedSteps = 400;           // steps per period
+constexpr int kExtractPeriods = 10;          // whole periods the amplitude is taken over
+// Newmark against the reduced model: the error estimate of response_helpers.hpp (detuning by
+// the trapezoidal rule) is first order; a factor 1.5 covers the higher modes' share and the
+// modes the reduced model leaves out (their quasi-static response to the smoothly rising
+// force is ~1e-6 of the resonant one).
+constexpr double kNewmarkEstimateFactor = 1.5;
+constexpr int kNewmarkSteps = 1000;    // steps per period
+constexpr int kNewmarkPeriods = 10;    // periods run from rest
+constexpr double kOnsetPeriods = 3.0;  // smooth rise of the force (response_helpers.hpp)
 constexpr int kModes = 8;
 constexpr double kForceN = 0.1;
 
-/// Complex amplitude of the fundamental of the sampled signal (last `periods` whole periods):
-/// signal = Re(X e^{i W t}).
+/// Complex amplitude of the fundamental of the damper acceleration over the next `periods`
+/// whole periods, under the shaker force F sin(2 pi f t): signal = Re(X e^{i W t}).
 template <typename Integrator>
 std::complex<double> run_and_extract(Integrator& sim, double frequency_hz, int steps_per_period,
                                      int periods) {
@@ -42,12 +56,21 @@ std::complex<double> run_and_extract(Integrator& sim, double frequency_hz, int s
     return 2.0 * sum / static_cast<double>(total);
 }
 
+/// Periods at f until the free response of a mode (fr, zeta) started from rest has decayed to
+/// kResidualTransient of its initial size: e^{-zeta w_r t} = kResidualTransient.
+int settling_periods(double f_hz, double fr_hz, double zeta) {
+    return static_cast<int>(
+        std::ceil(std::log(1.0 / kResidualTransient) * f_hz / (kTwoPi * zeta * fr_hz)));
+}
+
 class Paper000Response : public ::testing::Test {
   protected:
     void SetUp() override {
         spec_ = testing::paper000_loaded();
         model_ = build_linear_model(spec_, {});
         basis_ = compute_modes(model_, spec_.damping, kModes);
+        f1_ = basis_.modes[0].frequency_hz;
+        zeta1_ = basis_.modes[0].damping_ratio;
     }
     [[nodiscard]] std::complex<double> analytic(double f) const {
         // Force F sin(W t) = Re(-i F e^{i W t}).
@@ -55,31 +78,45 @@ class Paper000Response : public ::testing::Test {
                                  Eigen::Vector3d::UnitZ(), f) *
                (-1i * kForceN);
     }
+    /// f1 (1 + k zeta1): k = -1, 1 are the half-power points of the first mode.
+    [[nodiscard]] double around_resonance(int k) const { return f1_ * (1.0 + k * zeta1_); }
     StructureSpec spec_;
     LinearModel model_;
     ModalBasis basis_;
+    double f1_ = 0.0;
+    double zeta1_ = 0.0;
 };
 
-TEST_F(Paper000Response, ReducedModelMatchesTheModalAccelerance) {
-    for (const double f : {5.8, 6.2, basis_.modes[0].frequency_hz, 6.6, 7.0}) {
-        constexpr int kSteps = 400;
-        ReducedModalModel sim(model_, basis_, 1.0 / (f * kSteps));
-        sim.set_harmonic_steady_state("shaker", Eigen::Vector3d::UnitZ(), kForceN, f, 0.0);
-        const std::complex<double> got = run_and_extract(sim, f, kSteps, 3);
+TEST_F(Paper000Response, ReducedModelStartedFromRestSettlesOnTheModalAccelerance) {
+    ASSERT_DOUBLE_EQ(zeta1_, 0.005);
+    for (int k = -3; k <= 3; ++k) {
+        const double f = around_resonance(k);
+        ReducedModalModel sim(model_, basis_, 1.0 / (f * kReducedSteps));
+        (void)run_and_extract(sim, f, kReducedSteps, settling_periods(f, f1_, zeta1_));
+        const std::complex<double> got = run_and_extract(sim, f, kReducedSteps, kExtractPeriods);
         const std::complex<double> expected = analytic(f);
-        EXPECT_NEAR(std::abs(got) / std::abs(expected), 1.0, kReducedTolerance) << f << " Hz";
-        EXPECT_NEAR(std::arg(got / expected), 0.0, kReducedTolerance) << f << " Hz";
+        EXPECT_NEAR(std::abs(got) / std::abs(expected), 1.0, kReducedTolerance) << "k = " << k;
+        EXPECT_NEAR(std::arg(got / expected), 0.0, kReducedTolerance) << "k = " << k;
     }
 }
 
-TEST_F(Paper000Response, NewmarkIntegratorOfTheFullModelAgrees) {
-    for (const double f : {5.8, basis_.modes[0].frequency_hz, 7.0}) {
-        constexpr int kSteps = 1000;
-        NewmarkIntegrator sim(model_, basis_, spec_.damping, 1.0 / (f * kSteps));
-        sim.set_harmonic_steady_state("shaker", Eigen::Vector3d::UnitZ(), kForceN, f, 0.0);
-        const std::complex<double> got = run_and_extract(sim, f, kSteps, 2);
-        const std::complex<double> expected = analytic(f);
-        EXPECT_NEAR(std::abs(got) / std::abs(expected), 1.0, kNewmarkTolerance) << f << " Hz";
+TEST_F(Paper000Response, NewmarkOnTheFullModelFollowsTheReducedModelAcrossTheResonance) {
+    for (const int k : {-3, -1, 0, 1, 3}) {
+        const double f = around_resonance(k);
+        const double h = 1.0 / (f * kNewmarkSteps);
+        const testing::SmoothSine force{kForceN, kTwoPi * f, kOnsetPeriods / f};
+        ReducedModalModel reduced(model_, basis_, h);
+        NewmarkIntegrator full(model_, basis_, spec_.damping, h);
+        const auto diff = testing::run_side_by_side(
+            reduced, full, "damper", Eigen::Vector3d::UnitZ(), kNewmarkSteps * kNewmarkPeriods,
+            [&](auto& sim, double t) {
+                sim.set_point_load("shaker", Eigen::Vector3d::UnitZ() * force.value(t),
+                                   Eigen::Vector3d::Zero());
+            });
+        const double tolerance = kNewmarkEstimateFactor * testing::newmark_error_estimate(
+                                                              f, f1_, zeta1_, h, kNewmarkPeriods);
+        EXPECT_LT(diff.displacement, tolerance) << "k = " << k;
+        EXPECT_LT(diff.acceleration, tolerance) << "k = " << k;
     }
 }
 
@@ -131,6 +168,49 @@ TEST(ReducedModalModelBase, CantileverOnAMovingRootFollowsItsBaseQuasiStatically
     expected *= -1i;  // base acceleration sin(W t) = Re(-i e^{i W t})
     EXPECT_NEAR(std::abs(got / expected), 1.0, kReducedTolerance);
     EXPECT_NEAR(std::arg(got / expected), 0.0, kReducedTolerance);
+}
+
+TEST(ReducedModalModelRotation, ATipMomentRampTurnsTheCantileverTipByMLOverEI) {
+    // Euler-Bernoulli cantilever under a tip moment M about y: uniform curvature M/(E I), so
+    // the tip turns by M L/(E I) and deflects by w = -M L^2/(2 E I) (r_y = -dw/dx); cubic
+    // elements hold this quadratic deflection exactly and all modes sum to K^-1 f. A ramp
+    // M = c t stepped with dt far beyond every period leaves, once the free response has
+    // decayed, q = c t / w^2 - 2 zeta c / w^3 per mode: the lag's share is
+    // 2 zeta / (w_1 t) < 1e-6 at t = 2000 s, the rate q' = c / w^2 exact.
+    constexpr double kLagAndRoundOff = 1e-6;
+    BeamSpec b;
+    b.length_m = 1.0;
+    b.width_m = 0.04;
+    b.thickness_m = 0.005;
+    b.density_kg_m3 = 7850.0;
+    b.youngs_modulus_pa = 210e9;
+    b.min_elements = 20;
+    b.supports = {testing::support("root", 0.0, SupportKind::clamped)};
+    b.points = {NamedPoint{"tip", 1.0}};
+    const LinearModel model = build_beam_model(b, ExcitationSpec{});
+    const DampingSpec damping;  // 0.5 % on every mode
+    const ModalBasis basis = compute_modes(model, damping, model.dofs());
+    constexpr double kDt = 10.0;
+    constexpr int kSteps = 200;
+    ReducedModalModel sim(model, basis, kDt);
+    const double rate_nm_per_s = 1e-3;
+    for (int n = 0; n < kSteps; ++n) {
+        sim.set_point_load("tip", Eigen::Vector3d::Zero(),
+                           {0.0, rate_nm_per_s * (sim.time_s() + kDt), 0.0});
+        sim.step();
+    }
+    const double ei = b.youngs_modulus_pa * b.width_m * std::pow(b.thickness_m, 3) / 12.0;
+    const double moment = rate_nm_per_s * sim.time_s();
+    EXPECT_NEAR(sim.rotation("tip").y() / (moment * b.length_m / ei), 1.0, kLagAndRoundOff);
+    EXPECT_NEAR(sim.angular_velocity("tip").y() / (rate_nm_per_s * b.length_m / ei), 1.0,
+                kLagAndRoundOff);
+    EXPECT_NEAR(sim.displacement("tip").z() / (-moment * b.length_m * b.length_m / (2.0 * ei)), 1.0,
+                kLagAndRoundOff);
+    const double rotation_scale = moment * b.length_m / ei;
+    EXPECT_NEAR(sim.rotation("tip").x() / rotation_scale, 0.0, kLagAndRoundOff);
+    EXPECT_NEAR(sim.rotation("tip").z() / rotation_scale, 0.0, kLagAndRoundOff);
+    const Eigen::Vector3d root_rotation = sim.rotation("root");
+    EXPECT_EQ(root_rotation.norm(), 0.0);  // clamped DOFs have no column in the model
 }
 
 }  // namespace

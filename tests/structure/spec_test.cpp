@@ -89,6 +89,26 @@ TEST(StructureSpec, ExcitationMustReferToAnExistingPointOrSupport) {
     EXPECT_NE(find_key(spec.validate(), "excitation.direction"), nullptr);
 }
 
+TEST(StructureSpec, ANegativeLengthDoesNotMakeEveryPositionAnError) {
+    StructureSpec spec = testing::paper000_loaded();
+    spec.beam.length_m = -1.0;
+    const auto v = spec.validate();
+    ASSERT_EQ(v.size(), 1u);
+    EXPECT_EQ(v[0].key, "beam.length_m");
+}
+
+TEST(StructureSpec, ASectionThickerThanItIsWideIsReported) {
+    // y is the longer side, z the weak bending direction the shaker drives.
+    StructureSpec spec = testing::paper000_loaded();
+    spec.beam.thickness_m = 0.06;
+    const auto v = spec.validate();
+    ASSERT_EQ(v.size(), 1u);
+    EXPECT_EQ(v[0].key, "beam.thickness_m");
+    EXPECT_EQ(v[0].constraint, "must be <= width_m = 0.05");
+    spec.beam.thickness_m = spec.beam.width_m;  // a square section is fine
+    EXPECT_TRUE(spec.validate().empty());
+}
+
 TEST(LumpedSpec, SpringsMustReferenceMassesOrGround) {
     LumpedSpec l;
     l.masses = {{"a", 1.0}, {"b", 0.0}};
