@@ -1,5 +1,6 @@
 // The identify subcommand: reads a recording directory or a UFF58 file of FRFs, prints a table
-// of natural frequency and damping per arrangement, level and method, and writes damping.csv.
+// of natural frequency, damping and loss factor per arrangement, level and method, and writes
+// damping.csv and plots.
 #include "apps/identify_command.hpp"
 
 #include <CLI/CLI.hpp>
@@ -9,68 +10,144 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <set>
+#include <stdexcept>
 #include <string>
 
 #include "identification/damping_curve.hpp"
 #include "identification/file_error.hpp"
+#include "identification/plots.hpp"
 #include "identification/recording_io.hpp"
 #include "identification/uff58.hpp"
 
 namespace sb::apps {
 namespace {
 
+namespace fs = std::filesystem;
 namespace id = sb::identification;
+
+/// Exit code of bad input (config, data, command line).
+constexpr int kExitBadInput = 2;
 
 struct IdentifyArgs {
     std::string input;
-    std::string out = ".";
+    std::string out;  ///< empty: DIR/identified, or FILE's directory/<stem>-identified
     std::string channel;
     double background = 0.0;
     double mass = 0.0;
+    bool no_residual = false;
+    bool no_plots = false;
+};
+
+/// A command-line value that cannot be used with this input: exit 2 with the message.
+struct BadArgument : std::runtime_error {
+    using std::runtime_error::runtime_error;
 };
 
 void print_row(const std::string& arrangement, double level_g, const char* method,
                const id::ModalEstimate& e) {
     if (e.ok()) {
-        std::printf("%-12s %8.4g  %-18s %12.5f %12.6f %10.3g\n", arrangement.c_str(), level_g,
-                    method, e.natural_frequency_hz, e.damping_ratio, e.damping_spread);
+        std::printf("%-12s %8.4g  %-18s %12.5f %12.6f %12.6f %10.3g %9.3g\n", arrangement.c_str(),
+                    level_g, method, e.natural_frequency_hz, e.damping_ratio, e.loss_factor(),
+                    e.damping_spread, e.residual_ratio);
     } else {
         std::printf("%-12s %8.4g  %-18s %s: %s\n", arrangement.c_str(), level_g, method,
                     std::string(id::to_string(e.status)).c_str(), e.message.c_str());
     }
 }
 
-int run(const IdentifyArgs& args) {
-    const std::filesystem::path input(args.input);
+/// Every FRF record of a UFF58 file is one "level" (numbered from 0), named by ID line 1.
+std::vector<id::LevelIdentification> identify_uff(const fs::path& input, const IdentifyArgs& args,
+                                                  const id::IdentifyOptions& options) {
+    const auto records = id::read_uff58(input);
     std::vector<id::LevelIdentification> levels;
+    std::set<std::string> responses;
+    double index = 0.0;
+    for (const auto& r : records) {
+        if ((r.function_type != 4 && r.function_type != 5) || !r.is_complex()) continue;
+        responses.insert(r.response_name);
+        if (!args.channel.empty() && r.response_name != args.channel) continue;
+        // W/T needs response per newton: an FRF (type 4) over an excitation force (type 13).
+        const bool force_reference = r.function_type == 4 && r.denominator.data_type == 13;
+        if (args.mass > 0.0 && !force_reference) {
+            throw BadArgument("--mass: record '" + r.id[0] +
+                              "' is not an FRF over an excitation force (function type " +
+                              std::to_string(r.function_type) + ", denominator data type " +
+                              std::to_string(r.denominator.data_type) + ")");
+        }
+        std::string name = r.id[0];  // a CSV cell: no commas
+        std::replace(name.begin(), name.end(), ',', ';');
+        levels.push_back(id::identify_frf(name, index++, id::to_frf(r), options, force_reference));
+        levels.back().channel = r.response_name;
+    }
+    if (levels.empty() && !args.channel.empty() && !responses.empty()) {
+        std::string names;
+        for (const auto& n : responses) names += (names.empty() ? "" : ", ") + n;
+        throw BadArgument("--channel '" + args.channel + "': no FRF record of " + input.string() +
+                          " has this response name (record 6; found: " + names + ")");
+    }
+    if (levels.empty()) {
+        throw id::FileError(input.string(), 0, 0, "no complex FRF dataset 58 in the file");
+    }
+    return levels;
+}
+
+std::vector<id::LevelIdentification> identify_directory(const fs::path& input,
+                                                        const IdentifyArgs& args,
+                                                        const id::IdentifyOptions& options) {
+    const id::Recording rec = id::read_recording(input);
+    if (rec.points.empty()) {
+        throw BadArgument(input.string() +
+                          " has no points.csv rows (only damping.csv): nothing to identify");
+    }
+    const std::size_t ref = rec.reference_index();
+    if (args.mass > 0.0 &&
+        (rec.info.excitation != "force" || rec.channels[ref].quantity != "force")) {
+        throw BadArgument("--mass needs force excitation with a force reference channel; " +
+                          (input / "recording.toml").string() + " has excitation '" +
+                          rec.info.excitation + "' and reference '" + rec.channels[ref].name +
+                          "' (" + rec.channels[ref].quantity + ")");
+    }
+    try {
+        return id::identify_recording(rec, options);
+    } catch (const std::invalid_argument& e) {
+        throw BadArgument(std::string(args.channel.empty() ? "" : "--channel: ") +
+                          (input / "recording.toml").string() + ": " + e.what());
+    }
+}
+
+fs::path output_directory(const fs::path& input, const IdentifyArgs& args, bool directory) {
+    if (args.out.empty()) {
+        return directory ? input / "identified"
+                         : input.parent_path() / (input.stem().string() + "-identified");
+    }
+    const fs::path out(args.out);
+    // Never write into the recording: its damping.csv (possibly its only data) would go.
+    if (directory && fs::exists(out) && fs::equivalent(out, input)) {
+        throw BadArgument("--out " + args.out + " is the recording directory " + input.string() +
+                          ": writing damping.csv there would overwrite its input; choose another "
+                          "directory (default: " +
+                          (input / "identified").string() + ")");
+    }
+    return out;
+}
+
+int run(const IdentifyArgs& args) {
+    const fs::path input(args.input);
+    if (!fs::exists(input)) throw id::FileError(input.string(), 0, 0, "no such file or directory");
+    const bool directory = fs::is_directory(input);
+    const fs::path out = output_directory(input, args, directory);
     id::IdentifyOptions options;
     options.response_channel = args.channel;
     options.background_damping_ratio = args.background;
     options.effective_mass_kg = args.mass;
-    if (std::filesystem::is_directory(input)) {
-        levels = id::identify_recording(id::read_recording(input), options);
-    } else {
-        // A UFF58 file: every FRF record is one "level", named by its first ID line.
-        const auto records = id::read_uff58(input);
-        double index = 0.0;
-        for (const auto& r : records) {
-            if (r.function_type != 4 && r.function_type != 5) continue;
-            if (!r.is_complex()) continue;
-            id::LevelIdentification l;
-            l.arrangement = r.id[0];  // a CSV cell: no commas
-            std::replace(l.arrangement.begin(), l.arrangement.end(), ',', ';');
-            l.level_g = index++;
-            l.frf = id::to_frf(r);
-            l.half_power = id::half_power(l.frf, options.half_power_form);
-            l.circle_fit = id::circle_fit(l.frf, options.circle);
-            l.rational_fraction = id::rational_fraction_fit(l.frf, options.rational_fraction);
-            levels.push_back(std::move(l));
-        }
-        if (levels.empty())
-            throw id::FileError(input.string(), 0, 0, "no FRF dataset 58 in the file");
-    }
-    std::printf("%-12s %8s  %-18s %12s %12s %10s\n", "arrangement", "level_g", "method", "f_n [Hz]",
-                "zeta [-]", "spread");
+    options.residual.compensate = !args.no_residual;
+    const auto levels =
+        directory ? identify_directory(input, args, options) : identify_uff(input, args, options);
+
+    std::printf("%-12s %8s  %-18s %12s %12s %12s %10s %9s\n", "arrangement",
+                directory ? "level_g" : "record", "method", "f_n [Hz]", "zeta [-]", "eta [-]",
+                "spread", "residual");
     for (const auto& l : levels) {
         print_row(l.arrangement, l.level_g, "half-power", l.half_power);
         print_row(l.arrangement, l.level_g, "circle-fit", l.circle_fit);
@@ -80,10 +157,20 @@ int run(const IdentifyArgs& args) {
                         "energy", l.capacity_frequency_hz, l.specific_damping_capacity);
         }
     }
-    std::filesystem::create_directories(args.out);
-    const auto out = std::filesystem::path(args.out) / "damping.csv";
-    id::write_damping_csv(out, id::damping_rows(levels));
-    std::printf("wrote %s\n", out.string().c_str());
+    fs::create_directories(out);
+    const auto csv = out / "damping.csv";
+    id::write_damping_csv(csv, id::damping_rows(levels));
+    std::printf("wrote %s\n", csv.string().c_str());
+    if (!args.no_plots) {
+        id::PlotOptions plot_options;
+        if (!directory) plot_options.level_axis = "record of the UFF file";
+        const auto plots = id::write_plots(out, levels, plot_options);
+        if (plots.rendered) {
+            for (const auto& svg : plots.svg) std::printf("wrote %s\n", svg.string().c_str());
+        } else {
+            std::printf("%s\n", plots.message.c_str());
+        }
+    }
     return 0;
 }
 
@@ -94,22 +181,37 @@ void register_identify_command(CLI::App& app, int& exit_code) {
     CLI::App* sub = app.add_subcommand(
         "identify", "Natural frequency and damping per arrangement, level and method");
     sub->add_option("input", args->input, "recording directory or UFF58 file of FRFs")->required();
-    sub->add_option("--out", args->out, "directory for damping.csv (default: current directory)");
+    sub->add_option("--out", args->out,
+                    "directory for damping.csv and plots (default: DIR/identified, or "
+                    "<file>-identified beside a UFF file; never the recording itself)");
     sub->add_option("--channel", args->channel,
-                    "response channel (default: the control channel, else the first response)");
+                    "response channel (default: the control channel, else the first response); "
+                    "for a UFF file the response name of record 6");
     sub->add_option("--background", args->background,
-                    "rig background damping ratio to subtract [-]");
+                    "damping ratio of the bare rig, subtracted from every estimate [-]")
+        ->check(CLI::Range(0.0, 1.0));
     sub->add_option("--mass", args->mass,
-                    "effective mass at the response point [kg] for W/T (paper 003)");
+                    "effective mass at the response point [kg] for W/T (paper 003); needs "
+                    "force excitation with a force reference")
+        ->check(CLI::PositiveNumber);
+    sub->add_flag("--no-residual", args->no_residual,
+                  "do not fit and subtract the residual of other modes before the estimates");
+    sub->add_flag("--no-plots", args->no_plots, "write no plot files");
     sub->callback([args, &exit_code]() {
         try {
             exit_code = run(*args);
         } catch (const id::FileError& e) {
             std::cerr << e.what() << '\n';
-            exit_code = 2;
+            exit_code = kExitBadInput;
+        } catch (const BadArgument& e) {
+            std::cerr << "identify: " << e.what() << '\n';
+            exit_code = kExitBadInput;
         } catch (const std::invalid_argument& e) {
             std::cerr << "identify: " << e.what() << '\n';
-            exit_code = 2;
+            exit_code = kExitBadInput;
+        } catch (const fs::filesystem_error& e) {
+            std::cerr << "identify: " << e.what() << '\n';
+            exit_code = kExitBadInput;
         }
     });
 }

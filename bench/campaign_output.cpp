@@ -12,6 +12,7 @@
 
 #include "bench/sweep_checkpoint.hpp"
 #include "identification/damping_curve.hpp"
+#include "identification/plots.hpp"
 #include "identification/recording_io.hpp"
 #include "identification/uff58.hpp"
 
@@ -99,70 +100,6 @@ void write_control_log(const CampaignOutput& output) {
     write_file_atomically(output.options->out_dir / "control.csv", text);
 }
 
-/// SVG plots through gnuplot: FRF magnitude and phase per level, damping and natural
-/// frequency versus level. Skipped quietly when gnuplot is not installed.
-void write_plots(const fs::path& out_dir, const std::vector<id::LevelIdentification>& levels) {
-    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0 || levels.empty()) {
-        return;
-    }
-    const fs::path data = out_dir / "plots";
-    fs::create_directories(data);
-    std::map<std::string, std::vector<const id::LevelIdentification*>> by_arrangement;
-    for (const auto& level : levels) {
-        by_arrangement[level.arrangement].push_back(&level);
-    }
-    // gnuplot skips "NaN" points: an estimate that failed leaves a gap, not a zero.
-    const double kMissing = std::numeric_limits<double>::quiet_NaN();
-    std::ostringstream script;
-    script << "set terminal svg size 900,600 dynamic\nset grid\nset key outside right\n";
-    for (const auto& [arrangement, items] : by_arrangement) {
-        std::ofstream frf(data / (arrangement + "-frf.dat"));
-        std::ofstream curve(data / (arrangement + "-damping.dat"));
-        for (const auto* level : items) {
-            frf << "# level " << level->level_g << " g\n";
-            for (std::size_t i = 0; i < level->frf.frequency_hz.size(); ++i) {
-                const auto v = level->frf.value[i];
-                frf << level->frf.frequency_hz[i] << ' ' << std::abs(v) << ' '
-                    << std::arg(v) * 180.0 / 3.14159265358979323846 << '\n';
-            }
-            frf << "\n\n";
-            curve << level->level_g << ' '
-                  << (level->half_power.ok() ? level->half_power.damping_ratio * 100.0 : kMissing)
-                  << ' '
-                  << (level->circle_fit.ok() ? level->circle_fit.damping_ratio * 100.0 : kMissing)
-                  << ' '
-                  << (level->half_power.ok() ? level->half_power.natural_frequency_hz : kMissing)
-                  << '\n';
-        }
-        const std::string f = (data / (arrangement + "-frf.dat")).string();
-        const std::string d = (data / (arrangement + "-damping.dat")).string();
-        script << "set output '" << (out_dir / (arrangement + "-frf.svg")).string() << "'\n"
-               << "set multiplot layout 2,1 title 'Accelerance, " << arrangement << "'\n"
-               << "set ylabel '|A| [m/s^2/N]'\nset logscale y\n"
-               << "plot for [i=0:" << items.size() - 1 << "] '" << f
-               << "' index i using 1:2 with linespoints title columnheader(1)\n"
-               << "unset logscale y\nset ylabel 'phase [deg]'\nset xlabel 'frequency [Hz]'\n"
-               << "plot for [i=0:" << items.size() - 1 << "] '" << f
-               << "' index i using 1:3 with linespoints notitle\nunset multiplot\n"
-               << "unset xlabel\n"
-               << "set output '" << (out_dir / (arrangement + "-damping.svg")).string() << "'\n"
-               << "set multiplot layout 2,1 title 'Damping and natural frequency, " << arrangement
-               << "'\nset ylabel 'damping ratio [%]'\n"
-               << "plot '" << d << "' using 1:2 with linespoints title 'half-power', '" << d
-               << "' using 1:3 with linespoints title 'circle fit'\n"
-               << "set ylabel 'natural frequency [Hz]'\nset xlabel 'level [g RMS]'\n"
-               << "plot '" << d << "' using 1:4 with linespoints title 'half-power'\n"
-               << "unset multiplot\nunset xlabel\n";
-    }
-    const fs::path script_file = data / "plots.gp";
-    std::ofstream(script_file) << script.str();
-    const std::string command = "gnuplot '" + script_file.string() + "' 2>/dev/null";
-    if (std::system(command.c_str()) != 0) {
-        std::fprintf(stderr, "shakerbench: gnuplot failed on %s; plots skipped\n",
-                     script_file.c_str());
-    }
-}
-
 }  // namespace
 
 std::string write_series(const fs::path& out_dir, const std::string& key, int index,
@@ -213,7 +150,9 @@ void write_campaign_output(const CampaignOutput& output) {
     write_file_atomically(out_dir / "config.toml", output.options->config_text);
     write_provenance(output);
     if (output.config->campaign.output.plots) {
-        write_plots(out_dir, levels);
+        const auto plots = id::write_plots(out_dir, levels);
+        if (!plots.message.empty())
+            std::fprintf(stderr, "shakerbench: %s\n", plots.message.c_str());
     }
 }
 

@@ -4,17 +4,81 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+#include <unsupported/Eigen/LevenbergMarquardt>
 
 #include "core/units.hpp"
+#include "identification/rational_fraction.hpp"
 
 namespace sb::identification {
 
 namespace {
-/// Gauss–Newton iterations of the geometric circle fit; it converges in a handful from Kåsa.
-constexpr int kGeometricIterations = 20;
-/// Levenberg–Marquardt iterations of the angle model; 3 unknowns, converges in < 20.
-constexpr int kAngleIterations = 50;
+
+/// Largest angle about the centre between neighbouring points. With 3 points in the
+/// half-power band no step exceeds 4 atan(1/2) = 106°; near 180° the unwrapping (shorter way
+/// round) can go either way, so 120° is the limit.
+constexpr double kMaxAngleStep = 2.0 * kPi / 3.0;
+
+/// Geometric circle fit: residuals |z_i − c| − R for x = (xc, yc, R), analytic Jacobian.
+struct CircleDistances : Eigen::DenseFunctor<double> {
+    const std::vector<std::complex<double>>* z;
+    explicit CircleDistances(const std::vector<std::complex<double>>& points)
+        : Eigen::DenseFunctor<double>(3, static_cast<int>(points.size())), z(&points) {}
+    int operator()(const Eigen::VectorXd& x, Eigen::VectorXd& f) const {
+        for (std::size_t i = 0; i < z->size(); ++i) {
+            f(static_cast<Eigen::Index>(i)) =
+                std::abs((*z)[i] - std::complex<double>(x(0), x(1))) - x(2);
+        }
+        return 0;
+    }
+    int df(const Eigen::VectorXd& x, Eigen::MatrixXd& j) const {
+        for (std::size_t i = 0; i < z->size(); ++i) {
+            const auto r = static_cast<Eigen::Index>(i);
+            const std::complex<double> d = (*z)[i] - std::complex<double>(x(0), x(1));
+            const double a = std::max(std::abs(d), std::numeric_limits<double>::min());
+            j(r, 0) = -d.real() / a;
+            j(r, 1) = -d.imag() / a;
+            j(r, 2) = -1.0;
+        }
+        return 0;
+    }
+};
+
+/// Angle model of a viscous mode on its circle, x = (θr, ωn²/s_ref, ln ζωn):
+/// θ_i = θr + 2 atan((ω_i² − ωn²)/(2ζωnω_i)) (note §3.2, exact for viscous mobility).
+struct AngleModel : Eigen::DenseFunctor<double> {
+    const std::vector<double>* w;
+    const std::vector<double>* angle;
+    double s_ref;
+    AngleModel(const std::vector<double>& omega, const std::vector<double>& theta, double s)
+        : Eigen::DenseFunctor<double>(3, static_cast<int>(omega.size())),
+          w(&omega),
+          angle(&theta),
+          s_ref(s) {}
+    double u(const Eigen::VectorXd& x, std::size_t i) const {
+        const double wi = (*w)[i];
+        return (wi * wi - x(1) * s_ref) / (2.0 * std::exp(x(2)) * wi);
+    }
+    int operator()(const Eigen::VectorXd& x, Eigen::VectorXd& f) const {
+        for (std::size_t i = 0; i < w->size(); ++i) {
+            f(static_cast<Eigen::Index>(i)) = x(0) + 2.0 * std::atan(u(x, i)) - (*angle)[i];
+        }
+        return 0;
+    }
+    int df(const Eigen::VectorXd& x, Eigen::MatrixXd& j) const {
+        for (std::size_t i = 0; i < w->size(); ++i) {
+            const auto r = static_cast<Eigen::Index>(i);
+            const double ui = u(x, i);
+            const double g = 2.0 / (1.0 + ui * ui);
+            j(r, 0) = 1.0;
+            j(r, 1) = g * (-s_ref / (2.0 * std::exp(x(2)) * (*w)[i]));
+            j(r, 2) = g * (-ui);
+        }
+        return 0;
+    }
+};
+
 }  // namespace
 
 Circle fit_circle(const std::vector<std::complex<double>>& points) {
@@ -24,43 +88,32 @@ Circle fit_circle(const std::vector<std::complex<double>>& points) {
     double scale = 0.0;
     for (const auto& z : points) scale = std::max(scale, std::abs(z));
     if (!(scale > 0.0)) throw std::invalid_argument("fit_circle: all points are zero");
+    std::vector<std::complex<double>> z(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) z[i] = points[i] / scale;
     Eigen::MatrixXd a(n, 3);
     Eigen::VectorXd b(n);
     for (Eigen::Index i = 0; i < n; ++i) {
-        const auto z = points[static_cast<std::size_t>(i)] / scale;
-        a(i, 0) = z.real();
-        a(i, 1) = z.imag();
+        const auto zi = z[static_cast<std::size_t>(i)];
+        a(i, 0) = zi.real();
+        a(i, 1) = zi.imag();
         a(i, 2) = 1.0;
-        b(i) = -std::norm(z);
+        b(i) = -std::norm(zi);
     }
     const Eigen::Vector3d k = a.colPivHouseholderQr().solve(b);
-    double xc = -k(0) / 2.0;
-    double yc = -k(1) / 2.0;
-    double r = std::sqrt(xc * xc + yc * yc - k(2));
-    for (int it = 0; it < kGeometricIterations; ++it) {
-        Eigen::MatrixXd j(n, 3);
-        Eigen::VectorXd res(n);
-        for (Eigen::Index i = 0; i < n; ++i) {
-            const auto z = points[static_cast<std::size_t>(i)] / scale;
-            const double dx = z.real() - xc;
-            const double dy = z.imag() - yc;
-            const double d = std::hypot(dx, dy);
-            if (d == 0.0) return {std::complex<double>(xc, yc) * scale, r * scale};
-            res(i) = d - r;
-            j(i, 0) = -dx / d;
-            j(i, 1) = -dy / d;
-            j(i, 2) = -1.0;
-        }
-        const Eigen::Vector3d step = j.colPivHouseholderQr().solve(-res);
-        xc += step(0);
-        yc += step(1);
-        r += step(2);
-        if (step.norm() < 1e-15) break;
-    }
-    return {std::complex<double>(xc, yc) * scale, std::abs(r) * scale};
+    Eigen::VectorXd x(3);
+    x << -k(0) / 2.0, -k(1) / 2.0, 0.0;
+    x(2) = std::sqrt(x(0) * x(0) + x(1) * x(1) - k(2));
+    CircleDistances distances(z);
+    Eigen::LevenbergMarquardt<CircleDistances> lm(distances);
+    lm.setXtol(1e-15);
+    lm.setFtol(1e-15);
+    lm.minimize(x);
+    return {std::complex<double>(x(0), x(1)) * scale, std::abs(x(2)) * scale};
 }
 
-ModalEstimate circle_fit(const Frf& input, const CircleFitOptions& options) {
+namespace {
+
+ModalEstimate circle_fit_of(const Frf& input, const CircleFitOptions& options) {
     const Frf frf = convert(input, FrfForm::mobility);
     const std::size_t n = frf.value.size();
     if (n < 3) return failed_estimate(EstimateStatus::too_few_points, "fewer than 3 grid points");
@@ -77,12 +130,19 @@ ModalEstimate circle_fit(const Frf& input, const CircleFitOptions& options) {
     while (lo > 0 && mag[lo - 1] >= level) --lo;
     std::size_t hi = peak;
     while (hi + 1 < n && mag[hi + 1] >= level) ++hi;
+    // Widen a short run by the larger neighbour until it has min_points.
+    while (static_cast<int>(hi - lo + 1) < options.min_points && (lo > 0 || hi + 1 < n)) {
+        if (hi + 1 >= n || (lo > 0 && mag[lo - 1] >= mag[hi + 1])) {
+            --lo;
+        } else {
+            ++hi;
+        }
+    }
     const int count = static_cast<int>(hi - lo + 1);
     if (count < options.min_points || lo == peak || hi == peak) {
         return failed_estimate(EstimateStatus::too_few_points,
-                               std::to_string(count) + " point(s) with |mobility| >= " +
-                                   std::to_string(options.min_relative_magnitude) +
-                                   " x peak; need " + std::to_string(options.min_points) +
+                               std::to_string(count) + " grid point(s) around the peak; need " +
+                                   std::to_string(options.min_points) +
                                    " with at least one either side of the peak");
     }
     std::vector<std::complex<double>> z(frf.value.begin() + static_cast<long>(lo),
@@ -102,6 +162,17 @@ ModalEstimate circle_fit(const Frf& input, const CircleFitOptions& options) {
     }
     if (a.back() < a.front()) {
         for (auto& v : a) v = -v;
+    }
+    for (std::size_t i = 1; i < a.size(); ++i) {
+        const double step = a[i] - a[i - 1];
+        if (!(step > 0.0 && step <= kMaxAngleStep)) {
+            return failed_estimate(
+                EstimateStatus::too_few_points,
+                "the arc is too coarsely sampled: " +
+                    std::to_string(static_cast<int>(std::round(std::abs(step) * 180.0 / kPi))) +
+                    " deg between neighbouring points (at most 120): "
+                    "refine the grid near the peak");
+        }
     }
     // Start: fastest sweep dθ/dω² between neighbours, refined by a parabola through the rates.
     const std::size_t m = z.size();
@@ -128,53 +199,15 @@ ModalEstimate circle_fit(const Frf& input, const CircleFitOptions& options) {
     }
     // Initial ζωn from the sweep rate at resonance: dθ/dω² = 1/(ζωn²) there.
     double zw = 1.0 / (rate[k] * std::sqrt(sr));
-    // Refine (θr, ωn², ζωn) by Levenberg–Marquardt on θ_i = θr + 2 atan((ω_i² − ωn²)/(2ζωnω_i)).
-    Eigen::Vector3d x(ar, sr, zw);
-    const double s_scale = sr;
-    auto residuals = [&](const Eigen::Vector3d& p, Eigen::VectorXd& res, Eigen::MatrixXd* jac) {
-        for (std::size_t i = 0; i < m; ++i) {
-            const auto r = static_cast<Eigen::Index>(i);
-            const double u = (w[i] * w[i] - p(1)) / (2.0 * p(2) * w[i]);
-            res(r) = p(0) + 2.0 * std::atan(u) - a[i];
-            if (jac != nullptr) {
-                const double g = 2.0 / (1.0 + u * u);
-                (*jac)(r, 0) = 1.0;
-                (*jac)(r, 1) = g * (-1.0 / (2.0 * p(2) * w[i])) * s_scale;
-                (*jac)(r, 2) = g * (-u / p(2)) * p(2);
-            }
-        }
-    };
-    Eigen::VectorXd res(static_cast<Eigen::Index>(m));
-    Eigen::MatrixXd jac(static_cast<Eigen::Index>(m), 3);
-    residuals(x, res, &jac);
-    double cost = res.squaredNorm();
-    double lambda = 1e-3;
-    for (int it = 0; it < kAngleIterations && cost > 0.0; ++it) {
-        const Eigen::Matrix3d jtj = jac.transpose() * jac;
-        const Eigen::Vector3d g = jac.transpose() * res;
-        Eigen::Matrix3d damped = jtj;
-        damped.diagonal() *= (1.0 + lambda);
-        const Eigen::Vector3d dn = damped.ldlt().solve(-g);
-        // Parameters 1 and 2 were scaled in the Jacobian: undo the scaling in the step.
-        Eigen::Vector3d trial = x;
-        trial(0) += dn(0);
-        trial(1) += dn(1) * s_scale;
-        trial(2) *= std::exp(std::clamp(dn(2), -1.0, 1.0));  // keeps ζωn > 0
-        Eigen::VectorXd res_t(static_cast<Eigen::Index>(m));
-        residuals(trial, res_t, nullptr);
-        const double cost_t = res_t.squaredNorm();
-        if (std::isfinite(cost_t) && cost_t < cost) {
-            const bool converged = cost - cost_t < 1e-30 + 1e-16 * cost;
-            x = trial;
-            residuals(x, res, &jac);
-            cost = cost_t;
-            lambda = std::max(lambda * 0.3, 1e-12);
-            if (converged) break;
-        } else {
-            lambda *= 10.0;
-            if (lambda > 1e12) break;
-        }
-    }
+    // Refine (θr, ωn², ζωn) by Levenberg–Marquardt on the angle model.
+    AngleModel model(w, a, sr);
+    Eigen::LevenbergMarquardt<AngleModel> lm(model);
+    lm.setXtol(1e-15);
+    lm.setFtol(1e-15);
+    Eigen::VectorXd x(3);
+    x << ar, 1.0, std::log(zw);
+    lm.minimize(x);
+    x(1) *= sr;
     const double wr = std::sqrt(x(1));
     if (!std::isfinite(wr) || !(x(1) > w.front() * w.front() && x(1) < w.back() * w.back())) {
         return failed_estimate(EstimateStatus::fit_failed,
@@ -212,6 +245,16 @@ ModalEstimate circle_fit(const Frf& input, const CircleFitOptions& options) {
         return failed_estimate(EstimateStatus::fit_failed, "non-positive circle-fit damping");
     }
     return e;
+}
+
+}  // namespace
+
+ModalEstimate circle_fit(const Frf& frf, const CircleFitOptions& options) {
+    RationalFractionOptions plain;
+    plain.residual.compensate = false;
+    return estimate_with_residual(
+        frf, options.residual, [&options](const Frf& f) { return circle_fit_of(f, options); },
+        [&plain](const Frf& f) { return rational_fraction_fit(f, plain); });
 }
 
 }  // namespace sb::identification

@@ -6,6 +6,7 @@
 
 #include "identification/frf.hpp"
 #include "identification/modal_estimate.hpp"
+#include "identification/residual.hpp"
 
 namespace sb::identification {
 
@@ -16,9 +17,8 @@ struct Circle {
 };
 
 /// Least-squares circle through points: Kåsa's algebraic fit (x a1 + y a2 + a3 = −(x² + y²))
-/// as a start, then Gauss–Newton on the geometric distances Σ(|z − c| − R)². Written here
-/// rather than taken from a library because it is 40 lines and Eigen has the linear algebra.
-/// Throws std::invalid_argument for fewer than 3 points.
+/// as a start, then Levenberg–Marquardt (Eigen's unsupported module) on the geometric
+/// distances Σ(|z − c| − R)². Throws std::invalid_argument for fewer than 3 points.
 Circle fit_circle(const std::vector<std::complex<double>>& points);
 
 /// Options of circle_fit.
@@ -26,8 +26,12 @@ struct CircleFitOptions {
     /// Points used: the contiguous run around the peak with |T| >= this × |T|max [-]
     /// (note §3.2: about half the maximum spans more than 180° of arc).
     double min_relative_magnitude = 0.5;
-    /// Fewest points accepted (3 define the circle, one more checks it) [-].
+    /// Fewest points accepted (3 define the circle, one more checks it) [-]. When the run
+    /// above min_relative_magnitude is shorter, it is widened to this many points nearest the
+    /// peak: a grid with 3 points in the half-power band still gets a circle.
     int min_points = 4;
+    /// Residual of other modes, fitted and subtracted before the circle (residual.hpp).
+    ResidualOptions residual;
 };
 
 /// Circle-fit damping. The FRF is converted to mobility, where a viscous SDOF is an exact

@@ -2,6 +2,7 @@
 #include "identification/csv_table.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
@@ -56,6 +57,11 @@ double number(const CsvTable& table, const CsvCell& cell, const std::string& col
     if (cell.text.empty() || ec != std::errc() || ptr != e) {
         throw FileError(table.file, cell.line, cell.column,
                         "column '" + column_name + "': '" + cell.text + "' is not a number");
+    }
+    // from_chars reads "nan" and "inf": a measured value is never either.
+    if (!std::isfinite(v)) {
+        throw FileError(table.file, cell.line, cell.column,
+                        "column '" + column_name + "': '" + cell.text + "' is not a finite number");
     }
     return v;
 }

@@ -26,7 +26,8 @@ struct CsvTable {
 /// different number of cells than the header.
 CsvTable read_csv(const std::filesystem::path& path);
 
-/// The cell as a double; FileError at the cell ("not a number") otherwise.
+/// The cell as a finite double; FileError at the cell ("not a number", "not a finite number"
+/// for nan and inf) otherwise.
 double number(const CsvTable& table, const CsvCell& cell, const std::string& column_name);
 
 /// Throws std::invalid_argument if `text` cannot be a cell of this CSV dialect (comma, line

@@ -18,7 +18,8 @@ std::vector<DampingRow> read_damping_csv(const std::filesystem::path& path) {
             if (t.header[i].text == names[k]) c[k] = i;
         }
         if (c[k] == t.header.size())
-            throw FileError(t.file, 1, 0, std::string("missing column '") + names[k] + "'");
+            throw FileError(t.file, t.header.front().line, 0,
+                            std::string("missing column '") + names[k] + "'");
     }
     std::vector<DampingRow> rows;
     for (const auto& r : t.rows) {

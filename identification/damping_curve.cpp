@@ -18,12 +18,58 @@ void subtract(ModalEstimate& e, double background) {
 
 }  // namespace
 
+LevelIdentification identify_frf(const std::string& arrangement, double level_g, const Frf& frf,
+                                 const IdentifyOptions& options, bool force_reference) {
+    LevelIdentification l;
+    l.arrangement = arrangement;
+    l.level_g = level_g;
+    l.frf = frf;
+    if (options.effective_mass_kg > 0.0 && force_reference && !frf.value.empty()) {
+        // W/T (paper 003) at the point of largest response; W = π Im(F conj X) and
+        // T = ½ m ω²|X|² with X from the response amplitude per unit force (F = 1 N).
+        const Frf receptance = convert(l.frf, FrfForm::receptance);
+        std::size_t k = 0;
+        for (std::size_t i = 1; i < receptance.value.size(); ++i) {
+            if (std::abs(receptance.value[i]) > std::abs(receptance.value[k])) k = i;
+        }
+        const double w = hz_to_rad_s(receptance.frequency_hz[k]);
+        const std::complex<double> x = receptance.value[k];
+        const double psi =
+            specific_damping_capacity(dissipated_energy_per_cycle(1.0, x),
+                                      kinetic_energy_amplitude(options.effective_mass_kg, w, x));
+        l.specific_damping_capacity = psi - 4.0 * kPi * options.background_damping_ratio;
+        l.capacity_frequency_hz = receptance.frequency_hz[k];
+    }
+    CircleFitOptions circle = options.circle;
+    circle.residual = options.residual;
+    RationalFractionOptions rfp = options.rational_fraction;
+    rfp.residual = options.residual;
+    l.half_power = half_power(l.frf, options.half_power_form, options.residual);
+    l.circle_fit = circle_fit(l.frf, circle);
+    l.rational_fraction = rational_fraction_fit(l.frf, rfp);
+    for (auto* e : {&l.half_power, &l.circle_fit, &l.rational_fraction}) {
+        subtract(*e, options.background_damping_ratio);
+    }
+    return l;
+}
+
 std::vector<LevelIdentification> identify_recording(const Recording& rec,
                                                     const IdentifyOptions& options) {
     const std::size_t ref = rec.reference_index();
     std::size_t resp = rec.channels.size();
+    std::string names;
+    for (const auto& ch : rec.channels) names += (names.empty() ? "" : ", ") + ch.name;
     if (!options.response_channel.empty()) {
         resp = rec.channel_index(options.response_channel);
+        if (resp == rec.channels.size()) {
+            throw std::invalid_argument("no channel '" + options.response_channel +
+                                        "' in recording.toml (channels: " + names + ")");
+        }
+        if (resp == ref) {
+            throw std::invalid_argument("channel '" + options.response_channel +
+                                        "' is the reference: choose a response channel (" + names +
+                                        ")");
+        }
     } else {
         for (std::size_t i = 0; i < rec.channels.size() && resp == rec.channels.size(); ++i) {
             if (rec.channels[i].role == ChannelRole::control) resp = i;
@@ -33,8 +79,8 @@ std::vector<LevelIdentification> identify_recording(const Recording& rec,
         }
     }
     if (resp == rec.channels.size() || ref == rec.channels.size()) {
-        throw std::invalid_argument("identify_recording: no response channel '" +
-                                    options.response_channel + "'");
+        throw std::invalid_argument("recording.toml has no control or response channel (" + names +
+                                    ")");
     }
     const std::string& quantity = rec.channels[resp].quantity;
     const bool base = rec.info.excitation == "base";
@@ -42,54 +88,35 @@ std::vector<LevelIdentification> identify_recording(const Recording& rec,
     if (!base && quantity == "velocity") form = FrfForm::mobility;
     if (!base && quantity == "displacement") form = FrfForm::receptance;
 
+    // Repeats (same frequency) are combined by H1 = Σ Y conj(X) / Σ |X|² over them (Bendat &
+    // Piersol): Y/X for a single point, and noise on the response averages out.
+    struct Spectra {
+        std::complex<double> cross;  ///< Σ Y conj(X)
+        double reference = 0.0;      ///< Σ |X|²
+    };
     std::vector<std::pair<std::string, double>> order;
-    std::map<std::pair<std::string, double>, std::map<double, std::pair<std::complex<double>, int>>>
-        groups;
+    std::map<std::pair<std::string, double>, std::map<double, Spectra>> groups;
     for (const auto& p : rec.points) {
         const auto key = std::make_pair(p.arrangement, p.level_g);
         if (groups.find(key) == groups.end()) order.push_back(key);
-        std::complex<double> t = p.values[resp].amplitude / p.values[ref].amplitude;
-        if (base) t -= 1.0;  // relative transmissibility
+        const std::complex<double> x = p.values[ref].amplitude;
+        std::complex<double> y = p.values[resp].amplitude;
+        if (base) y -= x;  // relative transmissibility (response − table)/table
         auto& cell = groups[key][p.frequency_hz];
-        cell.first += t;
-        cell.second += 1;
+        cell.cross += y * std::conj(x);
+        cell.reference += std::norm(x);
     }
-    const bool energy =
-        options.effective_mass_kg > 0.0 && !base && rec.channels[ref].quantity == "force";
+    const bool force_reference = !base && rec.channels[ref].quantity == "force";
     std::vector<LevelIdentification> out;
     for (const auto& key : order) {
-        LevelIdentification l;
-        l.arrangement = key.first;
-        l.level_g = key.second;
-        l.channel = rec.channels[resp].name;
-        l.frf.form = form;
+        Frf frf;
+        frf.form = form;
         for (const auto& [f, sum] : groups[key]) {
-            l.frf.frequency_hz.push_back(f);
-            l.frf.value.push_back(sum.first / static_cast<double>(sum.second));
+            frf.frequency_hz.push_back(f);
+            frf.value.push_back(sum.cross / sum.reference);
         }
-        if (energy) {
-            // W/T (paper 003) at the point of largest response; W = π Im(F conj X) and
-            // T = ½ m ω²|X|² with X from the response amplitude per unit force (F = 1 N).
-            const Frf receptance = convert(l.frf, FrfForm::receptance);
-            std::size_t k = 0;
-            for (std::size_t i = 1; i < receptance.value.size(); ++i) {
-                if (std::abs(receptance.value[i]) > std::abs(receptance.value[k])) k = i;
-            }
-            const double w = hz_to_rad_s(receptance.frequency_hz[k]);
-            const std::complex<double> x = receptance.value[k];
-            const double psi = specific_damping_capacity(
-                dissipated_energy_per_cycle(1.0, x),
-                kinetic_energy_amplitude(options.effective_mass_kg, w, x));
-            l.specific_damping_capacity = psi - 4.0 * kPi * options.background_damping_ratio;
-            l.capacity_frequency_hz = receptance.frequency_hz[k];
-        }
-        l.half_power = half_power(l.frf, options.half_power_form);
-        l.circle_fit = circle_fit(l.frf, options.circle);
-        l.rational_fraction = rational_fraction_fit(l.frf, options.rational_fraction);
-        for (auto* e : {&l.half_power, &l.circle_fit, &l.rational_fraction}) {
-            subtract(*e, options.background_damping_ratio);
-        }
-        out.push_back(std::move(l));
+        out.push_back(identify_frf(key.first, key.second, frf, options, force_reference));
+        out.back().channel = rec.channels[resp].name;
     }
     return out;
 }

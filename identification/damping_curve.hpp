@@ -11,6 +11,7 @@
 #include "identification/modal_estimate.hpp"
 #include "identification/rational_fraction.hpp"
 #include "identification/recording.hpp"
+#include "identification/residual.hpp"
 
 namespace sb::identification {
 
@@ -21,8 +22,10 @@ struct IdentifyOptions {
     /// Damping ratio of the bare rig, subtracted from every estimate [-] (0: none).
     double background_damping_ratio = 0.0;
     HalfPowerForm half_power_form = HalfPowerForm::mobility;
-    CircleFitOptions circle;
-    RationalFractionOptions rational_fraction;
+    CircleFitOptions circle;                    ///< its `residual` is replaced by `residual`
+    RationalFractionOptions rational_fraction;  ///< its `residual` is replaced by `residual`
+    /// Residual of other modes, for all three estimators (residual.hpp).
+    ResidualOptions residual;
     /// Effective (modal) mass at the response point [kg] for the specific damping capacity
     /// W/T; 0 skips it. Needs force excitation with a force reference.
     double effective_mass_kg = 0.0;
@@ -45,12 +48,18 @@ struct LevelIdentification {
         std::numeric_limits<double>::quiet_NaN();  ///< where ψ is taken [Hz]
 };
 
-/// Groups points by arrangement and level (in order of first appearance), averages repeats
-/// (same frequency) of the complex ratio, builds the FRF and runs the three estimators.
+/// The three estimators on one FRF, background subtracted; W/T when `force_reference` (the
+/// FRF is response per newton) and options.effective_mass_kg > 0. `channel` is left empty.
+LevelIdentification identify_frf(const std::string& arrangement, double level_g, const Frf& frf,
+                                 const IdentifyOptions& options, bool force_reference);
+
+/// Groups points by arrangement and level (in order of first appearance), combines repeats
+/// (same frequency) by H1 = Σ Y conj(X) / Σ |X|², builds the FRF and runs the three
+/// estimators (identify_frf).
 /// Force excitation: response/reference in the form of the response quantity (acceleration →
 /// accelerance, velocity → mobility, displacement → receptance). Base excitation: the relative
-/// transmissibility, exact for a base-excited SDOF. Throws std::invalid_argument if the
-/// response channel does not exist.
+/// transmissibility, exact for a base-excited SDOF. Throws std::invalid_argument (naming the
+/// channels) if the response channel does not exist or is the reference.
 std::vector<LevelIdentification> identify_recording(const Recording& recording,
                                                     const IdentifyOptions& options = {});
 

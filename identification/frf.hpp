@@ -34,7 +34,11 @@ Frf transfer_function(const std::vector<double>& frequency_hz,
                       const std::vector<std::complex<double>>& response,
                       const std::vector<std::complex<double>>& reference, FrfForm form);
 
-/// Absolute transmissibility response/table for base excitation [-].
+/// Absolute transmissibility response/table for base excitation [-], tagged
+/// FrfForm::accelerance. For a base-excited SDOF it is 1 + ω²/(ωn² − ω² + 2iζωnω): the
+/// accelerance shape of relative_transmissibility plus the constant 1, which in receptance is
+/// the mass line −1/ω² that the estimators fit and subtract as residual (residual.hpp), so
+/// they are exact on it too; with ResidualOptions::compensate false they are not.
 Frf transmissibility(const std::vector<double>& frequency_hz,
                      const std::vector<std::complex<double>>& response_acceleration,
                      const std::vector<std::complex<double>>& table_acceleration);

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/units.hpp"
+#include "identification/rational_fraction.hpp"
 
 namespace sb::identification {
 
@@ -43,9 +44,8 @@ std::string hz(double f) {
     return s.str();
 }
 
-}  // namespace
-
-ModalEstimate half_power(const Frf& input, HalfPowerForm form) {
+/// Half-power on the FRF as given (no residual handling).
+ModalEstimate half_power_of(const Frf& input, HalfPowerForm form) {
     const Frf frf = convert(input, frf_form(form));
     const std::size_t n = frf.value.size();
     if (n < 3) return failed_estimate(EstimateStatus::too_few_points, "fewer than 3 grid points");
@@ -125,12 +125,13 @@ ModalEstimate half_power(const Frf& input, HalfPowerForm form) {
         const double w = hz_to_rad_s(f);
         if (w > w1 && w < w2) ++inside;
     }
-    if (inside < 2) {
+    if (inside < kHalfPowerMinPointsInBand) {
         return failed_estimate(EstimateStatus::too_few_points_in_band,
                                "only " + std::to_string(inside) +
                                    " grid point(s) inside the half-power band [" + hz(w1 / kTwoPi) +
-                                   ", " + hz(w2 / kTwoPi) +
-                                   "]; need 2: refine the grid (step <= 2 zeta f_n / 5)");
+                                   ", " + hz(w2 / kTwoPi) + "]; need " +
+                                   std::to_string(kHalfPowerMinPointsInBand) +
+                                   ": refine the grid (step <= 2 zeta f_n / 5)");
     }
     ModalEstimate e;
     e.status = EstimateStatus::ok;
@@ -154,6 +155,16 @@ ModalEstimate half_power(const Frf& input, HalfPowerForm form) {
     }
     e.natural_frequency_hz = wn / kTwoPi;
     return e;
+}
+
+}  // namespace
+
+ModalEstimate half_power(const Frf& frf, HalfPowerForm form, const ResidualOptions& residual) {
+    RationalFractionOptions plain;
+    plain.residual.compensate = false;
+    return estimate_with_residual(
+        frf, residual, [form](const Frf& f) { return half_power_of(f, form); },
+        [&plain](const Frf& f) { return rational_fraction_fit(f, plain); });
 }
 
 }  // namespace sb::identification

@@ -28,6 +28,8 @@ std::string_view to_string(EstimateStatus status) {
             return "too-few-points-in-band";
         case EstimateStatus::fit_failed:
             return "fit-failed";
+        case EstimateStatus::residual_dominates:
+            return "residual-dominates";
     }
     return "unknown";
 }

@@ -17,6 +17,7 @@ enum class EstimateStatus {
     no_upper_crossing,       ///< no point below the half-power level above the peak
     too_few_points_in_band,  ///< fewer than 2 grid points inside the half-power band
     fit_failed,              ///< the fit gave no physical answer (negative, complex, outside)
+    residual_dominates,      ///< other modes' residual exceeds the mode's own response at f_n
 };
 
 /// Which estimator produced a result.
@@ -31,6 +32,9 @@ struct ModalEstimate {
     /// Standard deviation of the per-pair damping ratios (circle fit) [-]; 0 for other methods.
     double damping_spread = 0.0;
     int points_used = 0;  ///< grid points entering the estimate [-]
+    /// Residual of the other modes at f_n over this mode's response there [-], as fitted and
+    /// subtracted before the estimate (residual.hpp); 0 when no residual was subtracted.
+    double residual_ratio = 0.0;
 
     bool ok() const noexcept { return status == EstimateStatus::ok; }
     /// Loss factor η = 2ζ [-] (equivalent at resonance, Ewins).

@@ -1,10 +1,14 @@
 // points.csv reader and writer (formats.md), checked against the channels of recording.toml.
 #include <array>
+#include <cmath>
 #include <fstream>
 #include <map>
+#include <sstream>
 
+#include "core/units.hpp"
 #include "identification/csv_table.hpp"
 #include "identification/file_error.hpp"
+#include "identification/harmonics.hpp"
 #include "identification/recording_io.hpp"
 
 namespace sb::identification {
@@ -12,6 +16,60 @@ namespace sb::identification {
 namespace {
 const char* const kFixedColumns[] = {"arrangement", "level_g", "frequency_hz", "status", "series"};
 const char* const kSuffixes[] = {"_rms", "_re", "_im"};
+/// A series must span a whole number of periods to this fraction of a period: time stamps
+/// printed with 6 significant digits (other tools) give ~1e-6 relative, and an excitation
+/// frequency printed with 6 digits ~1e-6 × the number of periods.
+constexpr double kWholePeriodTolerance = 1e-3;
+
+std::string channel_list(const Recording& rec) {
+    std::string names;
+    for (const auto& ch : rec.channels) names += (names.empty() ? "" : ", ") + ch.name;
+    return names;
+}
+
+/// Loads the series of a row and checks it against recording.toml and the row's frequency.
+TimeHistory load_series(const detail::CsvTable& t, const detail::CsvCell& cell,
+                        const std::filesystem::path& directory, double frequency_hz,
+                        const Recording& rec) {
+    const auto path = directory / cell.text;
+    if (!std::filesystem::is_regular_file(path)) {
+        throw FileError(t.file, cell.line, cell.column,
+                        "series file '" + cell.text + "' not found");
+    }
+    std::vector<std::string> known;
+    for (const auto& ch : rec.channels) known.push_back(ch.name);
+    TimeHistory h = read_time_history_csv(path, known);
+    const double fs = h.sample_rate_hz();
+    const double periods = static_cast<double>(h.time_s.size()) * frequency_hz / fs;
+    if (h.time_s.size() < 2 || std::round(periods) < 1.0 ||
+        std::abs(periods - std::round(periods)) > kWholePeriodTolerance) {
+        std::ostringstream m;
+        m.precision(8);
+        m << h.time_s.size() << " samples at " << fs << " Hz hold " << periods << " periods of "
+          << frequency_hz << " Hz (" << t.file << " line " << cell.line
+          << "): a series must hold whole periods";
+        throw FileError(path.string(), 0, 0, m.str());
+    }
+    return h;
+}
+
+/// rms and fundamental of one channel of a series over its whole periods, on the series'
+/// time axis (x(t) = Re{X e^{iωt}} with t = time_s: the analysis starts at t0 = time_s[0],
+/// so X = X' e^{−iωt0}). The sample rate is taken from the whole-period count (n f / P),
+/// which the check above has established, rather than from rounded time stamps.
+ChannelValue from_series(const TimeHistory& h, std::size_t column, double frequency_hz) {
+    const double periods =
+        std::round(static_cast<double>(h.time_s.size()) * frequency_hz / h.sample_rate_hz());
+    const double fs = static_cast<double>(h.time_s.size()) * frequency_hz / periods;
+    ChannelValue v;
+    const double t0 = h.time_s.front();
+    v.amplitude = fundamental_amplitude(h.columns[column], fs, frequency_hz) *
+                  std::polar(1.0, -hz_to_rad_s(frequency_hz) * t0);
+    v.rms = rms_over_whole_periods(h.columns[column], fs, frequency_hz);
+    v.from_series = true;
+    return v;
+}
+
 }  // namespace
 
 void read_points_csv(const std::filesystem::path& path, Recording& rec) {
@@ -28,8 +86,7 @@ void read_points_csv(const std::filesystem::path& path, Recording& rec) {
             for (const char* s : kSuffixes) known = known || h.text == ch.name + s;
         }
         if (!known) {
-            std::string names;
-            for (const auto& ch : rec.channels) names += (names.empty() ? "" : ", ") + ch.name;
+            const std::string names = channel_list(rec);
             throw FileError(
                 t.file, h.line, h.column,
                 "unknown column '" + h.text +
@@ -40,7 +97,9 @@ void read_points_csv(const std::filesystem::path& path, Recording& rec) {
     auto need = [&](const std::string& name, const std::string& why) {
         const auto it = col.find(name);
         if (it == col.end()) {
-            throw FileError(t.file, 1, 0, "missing column '" + name + "'" + why);
+            // At the header line (comments or blank lines may precede it), whole line.
+            throw FileError(t.file, t.header.front().line, 0,
+                            "missing column '" + name + "'" + why);
         }
         return it->second;
     };
@@ -73,9 +132,32 @@ void read_points_csv(const std::filesystem::path& path, Recording& rec) {
                                 "' must be one of converged | limit-cycle-2 | closest | measured");
         }
         p.series = row[c_se].text;
+        if (!p.series.empty()) {
+            p.history = load_series(t, row[c_se], path.parent_path(), p.frequency_hz, rec);
+        }
         for (std::size_t c = 0; c < rec.channels.size(); ++c) {
             const auto& cc = chan_cols[c];
             const auto& n = rec.channels[c].name;
+            if (row[cc[0]].text.empty() && row[cc[1]].text.empty() && row[cc[2]].text.empty()) {
+                // No values: computed from the series, which must hold the channel.
+                const auto& cell = row[cc[0]];
+                if (p.series.empty()) {
+                    throw FileError(t.file, cell.line, cell.column,
+                                    "columns '" + n + "_rms', '" + n + "_re', '" + n +
+                                        "_im' are empty and the row has no series to compute "
+                                        "them from");
+                }
+                std::size_t k = 0;
+                while (k < p.history.channels.size() && p.history.channels[k] != n) ++k;
+                if (k == p.history.channels.size()) {
+                    throw FileError(t.file, cell.line, cell.column,
+                                    "columns '" + n + "_rms', '" + n + "_re', '" + n +
+                                        "_im' are empty and series '" + p.series +
+                                        "' has no column '" + n + "'");
+                }
+                p.values.push_back(from_series(p.history, k, p.frequency_hz));
+                continue;
+            }
             ChannelValue v;
             v.rms = detail::number(t, row[cc[0]], n + "_rms");
             v.amplitude = {detail::number(t, row[cc[1]], n + "_re"),

@@ -10,7 +10,9 @@
 
 namespace sb::identification {
 
-ModalEstimate rational_fraction_fit(const Frf& frf, const RationalFractionOptions& options) {
+namespace {
+
+ModalEstimate rational_fraction_of(const Frf& frf, const RationalFractionOptions& options) {
     check_frf(frf);
     const std::size_t n = frf.value.size();
     if (n < 3) return failed_estimate(EstimateStatus::too_few_points, "fewer than 3 grid points");
@@ -77,6 +79,13 @@ ModalEstimate rational_fraction_fit(const Frf& frf, const RationalFractionOption
         return failed_estimate(EstimateStatus::fit_failed, "fitted damping ratio >= 1");
     }
     return e;
+}
+
+}  // namespace
+
+ModalEstimate rational_fraction_fit(const Frf& frf, const RationalFractionOptions& options) {
+    const auto plain = [&options](const Frf& f) { return rational_fraction_of(f, options); };
+    return estimate_with_residual(frf, options.residual, plain, plain);
 }
 
 }  // namespace sb::identification

@@ -3,6 +3,7 @@
 
 #include "identification/frf.hpp"
 #include "identification/modal_estimate.hpp"
+#include "identification/residual.hpp"
 
 namespace sb::identification {
 
@@ -15,6 +16,9 @@ struct RationalFractionOptions {
     int min_points = 5;
     /// Sanathanan–Koerner iterations reweighting Levy's linearisation by 1/|den| [-].
     int iterations = 8;
+    /// Residual of other modes, fitted and subtracted before the fit (residual.hpp); the
+    /// numerator alone absorbs only a residual that is constant in the FRF's form.
+    ResidualOptions residual;
 };
 
 /// Fits T(s) = (a0 + a1 s + a2 s²)/(s² + b1 s + b0), s = iω/ω_ref, to the points near the peak

@@ -31,10 +31,23 @@ struct RecordingInfo {
     std::string description;
 };
 
+/// A time history (series/*.csv): uniform sampling, one column per channel.
+struct TimeHistory {
+    std::vector<std::string> channels;         ///< column names after time_s
+    std::vector<double> time_s;                ///< [s]
+    std::vector<std::vector<double>> columns;  ///< columns[c][sample] [channel unit]
+
+    /// 1 / (mean sampling step) [Hz]; 0 with fewer than 2 samples.
+    double sample_rate_hz() const;
+};
+
 /// One channel's values at one point.
 struct ChannelValue {
     double rms = 0.0;                ///< RMS over the steady window [channel unit]
     std::complex<double> amplitude;  ///< fundamental, peak, x(t) = Re{X e^{iωt}} [channel unit]
+    /// True when points.csv left the three cells empty and rms and amplitude were computed
+    /// from the point's time history (fundamental over whole periods).
+    bool from_series = false;
 };
 
 /// One row of points.csv.
@@ -45,6 +58,7 @@ struct PointRow {
     std::string status;                ///< converged | limit-cycle-2 | closest | measured
     std::string series;                ///< time history path relative to the directory, or empty
     std::vector<ChannelValue> values;  ///< one per channel, in Recording::channels order
+    TimeHistory history{};             ///< the series, loaded and checked; empty without one
 };
 
 /// One row of damping.csv.
@@ -67,16 +81,6 @@ struct Recording {
     std::size_t reference_index() const;
     /// Index of a channel by name, or channels.size() if absent.
     std::size_t channel_index(const std::string& name) const;
-};
-
-/// A time history (series/*.csv): uniform sampling, one column per channel.
-struct TimeHistory {
-    std::vector<std::string> channels;         ///< column names after time_s
-    std::vector<double> time_s;                ///< [s]
-    std::vector<std::vector<double>> columns;  ///< columns[c][sample] [channel unit]
-
-    /// 1 / (mean sampling step) [Hz]; 0 with fewer than 2 samples.
-    double sample_rate_hz() const;
 };
 
 }  // namespace sb::identification

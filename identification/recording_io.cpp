@@ -37,6 +37,12 @@ void write_recording(const std::filesystem::path& dir, const Recording& rec) {
     write_recording_toml(dir / "recording.toml", rec);
     write_points_csv(dir / "points.csv", rec);
     if (!rec.damping.empty()) write_damping_csv(dir / "damping.csv", rec.damping);
+    for (const auto& p : rec.points) {
+        if (p.series.empty() || p.history.time_s.empty()) continue;
+        const auto file = dir / p.series;
+        std::filesystem::create_directories(file.parent_path());
+        write_time_history_csv(file, p.history);
+    }
 }
 
 }  // namespace sb::identification

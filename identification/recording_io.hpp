@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "identification/recording.hpp"
@@ -11,14 +12,19 @@ namespace sb::identification {
 
 /// Reads recording.toml, points.csv and damping.csv (if present) of a directory. Errors:
 /// unknown keys, bad enumerations, not exactly one reference or more than one control channel
-/// (recording.toml); missing, unknown or duplicated columns, cells that are not numbers, bad
-/// status (points.csv). Series are not loaded (see read_time_history_csv).
+/// (recording.toml); missing, unknown or duplicated columns, cells that are not finite
+/// numbers, bad status (points.csv). Every series a row names is loaded into
+/// PointRow::history and checked: the file exists, time_s is uniform, its columns are
+/// channels of recording.toml, and it spans a whole number of periods of the row's frequency.
+/// A channel whose three cells (C_rms, C_re, C_im) are all empty is computed from the series
+/// (fundamental and rms over whole periods, ChannelValue::from_series).
 Recording read_recording(const std::filesystem::path& directory);
 
 /// Reads recording.toml only (info and channels).
 Recording read_recording_toml(const std::filesystem::path& file);
 
-/// Reads points.csv against the channels of `recording` and appends to recording.points.
+/// Reads points.csv against the channels of `recording` and appends to recording.points;
+/// series paths are relative to the file's directory (see read_recording).
 void read_points_csv(const std::filesystem::path& file, Recording& recording);
 
 /// Reads damping.csv.
@@ -29,7 +35,13 @@ std::vector<DampingRow> read_damping_csv(const std::filesystem::path& file);
 /// are comments.
 TimeHistory read_time_history_csv(const std::filesystem::path& file);
 
-/// Writes recording.toml, points.csv and (if non-empty) damping.csv; creates the directory.
+/// The same, and every column after time_s must be one of `known_channels` (an error at the
+/// header cell otherwise); an empty list accepts any name.
+TimeHistory read_time_history_csv(const std::filesystem::path& file,
+                                  const std::vector<std::string>& known_channels);
+
+/// Writes recording.toml, points.csv, (if non-empty) damping.csv and the loaded series of the
+/// points (PointRow::history, at PointRow::series); creates the directories.
 /// Numbers are written with 17 significant digits so a write–read cycle is exact.
 void write_recording(const std::filesystem::path& directory, const Recording& recording);
 

@@ -1,4 +1,5 @@
 // series/*.csv time histories (formats.md): header time_s,<channel>,..., uniform sampling.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -20,13 +21,37 @@ double TimeHistory::sample_rate_hz() const {
 }
 
 TimeHistory read_time_history_csv(const std::filesystem::path& path) {
+    return read_time_history_csv(path, {});
+}
+
+TimeHistory read_time_history_csv(const std::filesystem::path& path,
+                                  const std::vector<std::string>& known_channels) {
     const auto t = detail::read_csv(path);
     if (t.header[0].text != "time_s") {
         throw FileError(t.file, t.header[0].line, t.header[0].column,
                         "first column must be 'time_s', found '" + t.header[0].text + "'");
     }
     TimeHistory h;
-    for (std::size_t i = 1; i < t.header.size(); ++i) h.channels.push_back(t.header[i].text);
+    for (std::size_t i = 1; i < t.header.size(); ++i) {
+        const auto& cell = t.header[i];
+        const bool known = known_channels.empty() ||
+                           std::find(known_channels.begin(), known_channels.end(), cell.text) !=
+                               known_channels.end();
+        if (!known) {
+            std::string names;
+            for (const auto& n : known_channels) names += (names.empty() ? "" : ", ") + n;
+            throw FileError(t.file, cell.line, cell.column,
+                            "unknown channel '" + cell.text +
+                                "': not a channel of recording.toml (channels: " + names + ")");
+        }
+        for (std::size_t j = 1; j < i; ++j) {
+            if (t.header[j].text == cell.text) {
+                throw FileError(t.file, cell.line, cell.column,
+                                "duplicate column '" + cell.text + "'");
+            }
+        }
+        h.channels.push_back(cell.text);
+    }
     h.columns.resize(h.channels.size());
     for (const auto& row : t.rows) {
         h.time_s.push_back(detail::number(t, row[0], "time_s"));

@@ -118,10 +118,12 @@ struct Record7 {
 Record7 read_record7(Cursor& c, Uff58Record& r) {
     const auto l = c.next();
     Record7 s;
+    // Fixed columns only when nothing follows them: a wider z value (the exact writer's) would
+    // otherwise be cut at column 69 and read short.
     if (!(parse_int(field(l, 0, 10), s.type) && parse_int(field(l, 10, 10), s.points) &&
           parse_int(field(l, 20, 10), s.spacing) && parse_fortran_double(field(l, 30, 13), s.min) &&
           parse_fortran_double(field(l, 43, 13), s.inc) &&
-          parse_fortran_double(field(l, 56, 13), r.z_value))) {
+          parse_fortran_double(field(l, 56, 13), r.z_value) && trim(field(l, 69, 80)).empty())) {
         const auto t = split_blanks(l);
         if (t.size() != 6 || !parse_int(t[0], s.type) || !parse_int(t[1], s.points) ||
             !parse_int(t[2], s.spacing) || !parse_fortran_double(t[3], s.min) ||
@@ -257,9 +259,12 @@ Uff58Record read_dataset(Cursor& c, bool binary, std::string_view id_line) {
     Uff58Record r;
     bool swap = false;
     if (binary) {
-        const auto t = split_blanks(id_line);  // 58b, byte order, float format, lines, bytes
+        // "58b" (I6,A1 as written) or "58 b", then byte order, float format, lines, bytes.
+        const auto t = split_blanks(id_line);
+        const std::size_t first = t.size() > 1 && t[0] == "58" ? 2 : 1;
         int order = 0, format = 0;
-        if (t.size() < 3 || !parse_int(t[1], order) || !parse_int(t[2], format)) {
+        if (t.size() < first + 2 || !parse_int(t[first], order) ||
+            !parse_int(t[first + 1], format)) {
             c.fail(1, "58b header: expected byte order and floating-point format");
         }
         if (order != 1 && order != 2) c.fail(1, "58b: byte order must be 1 (little) or 2 (big)");
@@ -300,16 +305,30 @@ Uff58Record read_dataset(Cursor& c, bool binary, std::string_view id_line) {
     c.fail(0, "end of file inside dataset 58b (no closing -1)");
 }
 
-void put_axis(std::string& out, const Uff58Axis& a) {
-    char buf[128];
-    std::snprintf(buf, sizeof buf, "%10d%5d%5d%5d %-20.20s %-20.20s\n", a.data_type,
-                  a.length_exponent, a.force_exponent, a.temperature_exponent,
-                  a.label.empty() ? "NONE" : a.label.c_str(),
-                  a.units.empty() ? "NONE" : a.units.c_str());
-    out += buf;
+/// Text of a fixed-width field: empty becomes NONE; longer than the field is an error rather
+/// than a silent cut (a reader would see another name).
+std::string fixed_text(const std::string& value, std::size_t width, std::size_t record,
+                       const char* what) {
+    if (value.size() > width) {
+        throw std::invalid_argument("write_uff58: record " + std::to_string(record) + " " + what +
+                                    " '" + value + "' is longer than " + std::to_string(width) +
+                                    " characters");
+    }
+    if (value.find_first_of("\r\n") != std::string::npos) {
+        throw std::invalid_argument("write_uff58: record " + std::to_string(record) + " " + what +
+                                    " contains a line break");
+    }
+    return value.empty() ? "NONE" : value;
 }
 
-std::string name(const std::string& s) { return s.empty() ? "NONE" : s; }
+void put_axis(std::string& out, const Uff58Axis& a, std::size_t record) {
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "%10d%5d%5d%5d %-20s %-20s\n", a.data_type, a.length_exponent,
+                  a.force_exponent, a.temperature_exponent,
+                  fixed_text(a.label, 20, record, "axis label").c_str(),
+                  fixed_text(a.units, 20, record, "units label").c_str());
+    out += buf;
+}
 
 }  // namespace
 
@@ -347,58 +366,72 @@ void write_uff58(const std::filesystem::path& path, const std::vector<Uff58Recor
     for (const auto& r : records) {
         if (r.x.size() != r.y.size())
             throw std::invalid_argument("write_uff58: x and y sizes differ");
+        if (r.ordinate_type != 2 && r.ordinate_type != 4 && r.ordinate_type != 5 &&
+            r.ordinate_type != 6) {
+            throw std::invalid_argument("write_uff58: ordinate data type " +
+                                        std::to_string(r.ordinate_type) + " is not 2, 4, 5 or 6");
+        }
         const std::size_t n = r.x.size();
+        const bool single = r.ordinate_type == 2 || r.ordinate_type == 5;
         bool even = digits == Uff58Digits::nominal && n > 1;
         const double inc = n > 1 ? (r.x[n - 1] - r.x[0]) / static_cast<double>(n - 1) : 0.0;
         for (std::size_t i = 0; even && i < n; ++i) {
             even = std::abs(r.x[i] - (r.x[0] + static_cast<double>(i) * inc)) <=
                    kEvenSpacingTolerance * std::abs(r.x[n - 1]);
         }
-        const int type = r.is_complex() ? 6 : 4;
         out += "    -1\n    58\n";
-        for (const auto& id : r.id)
-            out += (id.empty() ? std::string("NONE") : id.substr(0, 80)) + "\n";
-        std::snprintf(buf, sizeof buf, "%5d%10d%5d%10d %-10.10s%10d%4d %-10.10s%10d%4d\n",
+        for (const auto& id : r.id) out += fixed_text(id, 80, 1, "ID line") + "\n";
+        std::snprintf(buf, sizeof buf, "%5d%10d%5d%10d %-10s%10d%4d %-10s%10d%4d\n",
                       r.function_type, r.function_id, r.version, r.load_case,
-                      name(r.response_name).c_str(), r.response_node, r.response_direction,
-                      name(r.reference_name).c_str(), r.reference_node, r.reference_direction);
+                      fixed_text(r.response_name, 10, 6, "response name").c_str(), r.response_node,
+                      r.response_direction,
+                      fixed_text(r.reference_name, 10, 6, "reference name").c_str(),
+                      r.reference_node, r.reference_direction);
         out += buf;
-        std::snprintf(buf, sizeof buf, "%10d%10zu%10d%13.5E%13.5E%13.5E\n", type, n, even ? 1 : 0,
-                      even ? r.x[0] : 0.0, even ? inc : 0.0, r.z_value);
-        out += buf;
-        put_axis(out, r.abscissa);
-        put_axis(out, r.ordinate);
-        put_axis(out, r.denominator);
-        put_axis(out, r.z_axis);
         if (digits == Uff58Digits::exact) {
-            std::vector<double> v;
-            for (std::size_t i = 0; i < n; ++i) {
-                v.push_back(r.x[i]);
-                v.push_back(r.y[i].real());
-                if (r.is_complex()) v.push_back(r.y[i].imag());
-            }
-            for (std::size_t i = 0; i < v.size(); ++i) {
+            // z with 17 significant digits: 30 + 13 + 13 + 24 = 80 columns.
+            std::snprintf(buf, sizeof buf, "%10d%10zu%10d%13.5E%13.5E %23.16E\n", r.ordinate_type,
+                          n, 0, 0.0, 0.0, r.z_value);
+        } else {
+            std::snprintf(buf, sizeof buf, "%10d%10zu%10d%13.5E%13.5E%13.5E\n", r.ordinate_type, n,
+                          even ? 1 : 0, even ? r.x[0] : 0.0, even ? inc : 0.0, r.z_value);
+        }
+        out += buf;
+        put_axis(out, r.abscissa, 8);
+        put_axis(out, r.ordinate, 9);
+        put_axis(out, r.denominator, 10);
+        put_axis(out, r.z_axis, 11);
+        // Flat value list of record 12: x (uneven only), re, im (complex only) per point.
+        std::vector<double> v;
+        for (std::size_t i = 0; i < n; ++i) {
+            if (!even) v.push_back(r.x[i]);
+            v.push_back(r.y[i].real());
+            if (r.is_complex()) v.push_back(r.y[i].imag());
+        }
+        if (digits == Uff58Digits::exact) {
+            for (std::size_t i = 0; i < v.size(); ++i) {  // three %25.16E per line
                 std::snprintf(buf, sizeof buf, "%25.16E", v[i]);
                 out += buf;
                 if (i % 3 == 2 || i + 1 == v.size()) out += "\n";
             }
-        } else if (even) {
-            std::vector<double> v;
-            for (const auto& y : r.y) {
-                v.push_back(y.real());
-                if (r.is_complex()) v.push_back(y.imag());
+        } else if (single) {
+            for (std::size_t i = 0; i < v.size(); ++i) {  // cases 1-4: 6E13.5
+                std::snprintf(buf, sizeof buf, "%13.5E", v[i]);
+                out += buf;
+                if (i % 6 == 5 || i + 1 == v.size()) out += "\n";
             }
-            for (std::size_t i = 0; i < v.size(); ++i) {  // 4E20.12
+        } else if (even) {
+            for (std::size_t i = 0; i < v.size(); ++i) {  // cases 5, 7: 4E20.12
                 std::snprintf(buf, sizeof buf, "%20.12E", v[i]);
                 out += buf;
                 if (i % 4 == 3 || i + 1 == v.size()) out += "\n";
             }
         } else {
             for (std::size_t i = 0; i < n; ++i) {
-                if (r.is_complex()) {  // E13.5,2E20.12 one point per line
+                if (r.is_complex()) {  // case 8: E13.5,2E20.12 one point per line
                     std::snprintf(buf, sizeof buf, "%13.5E%20.12E%20.12E\n", r.x[i], r.y[i].real(),
                                   r.y[i].imag());
-                } else {  // 2(E13.5,E20.12)
+                } else {  // case 6: 2(E13.5,E20.12)
                     std::snprintf(buf, sizeof buf, "%13.5E%20.12E", r.x[i], r.y[i].real());
                 }
                 out += buf;

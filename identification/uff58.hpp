@@ -18,21 +18,22 @@ struct Uff58Axis {
     int length_exponent = 0;
     int force_exponent = 0;
     int temperature_exponent = 0;
-    std::string label = "NONE";  ///< axis label (≤ 20 characters written)
-    std::string units = "NONE";  ///< units label (≤ 20 characters written)
+    std::string label = "NONE";  ///< axis label (at most 20 characters)
+    std::string units = "NONE";  ///< units label (at most 20 characters)
 };
 
 /// One dataset 58: a function of one abscissa (FRF, time response, ...).
 struct Uff58Record {
-    std::array<std::string, 5> id = {"NONE", "NONE", "NONE", "NONE", "NONE"};  ///< records 1–5
+    /// Records 1–5, at most 80 characters each.
+    std::array<std::string, 5> id = {"NONE", "NONE", "NONE", "NONE", "NONE"};
     int function_type = 4;  ///< 1 time response, 4 FRF, 5 transmissibility, ...
     int function_id = 0;
     int version = 0;
     int load_case = 0;
-    std::string response_name = "NONE";
+    std::string response_name = "NONE";  ///< at most 10 characters
     int response_node = 0;
-    int response_direction = 0;  ///< 0 scalar, ±1..±3 translation, ±4..±6 rotation
-    std::string reference_name = "NONE";
+    int response_direction = 0;           ///< 0 scalar, ±1..±3 translation, ±4..±6 rotation
+    std::string reference_name = "NONE";  ///< at most 10 characters
     int reference_node = 0;
     int reference_direction = 0;
     int ordinate_type = 6;  ///< 2 real single, 4 real double, 5 complex single, 6 complex double
@@ -53,8 +54,8 @@ enum class Uff58Digits {
     /// spacing kept when the abscissa is evenly spaced. What other tools expect.
     nominal,
     /// Every value as %25.16E (17 significant digits: doubles round-trip bit for bit), three
-    /// per line, abscissa always explicit (spacing 0). Lines stay ≤ 80 columns; readers must
-    /// tokenise on blanks (pyuff and this reader do).
+    /// per line, abscissa always explicit (spacing 0), the z value of record 7 as %23.16E.
+    /// Lines stay ≤ 80 columns; readers must tokenise on blanks (pyuff and this reader do).
     exact,
 };
 
@@ -65,8 +66,11 @@ enum class Uff58Digits {
 /// and stray CR/LF after the binary block. Throws FileError (file:line:col) otherwise.
 std::vector<Uff58Record> read_uff58(const std::filesystem::path& path);
 
-/// Writes the records as ASCII dataset 58, double precision (single-precision records are
-/// written as types 4/6), LF line ends. Throws FileError if the file cannot be opened.
+/// Writes the records as ASCII dataset 58 with their ordinate data type (single-precision
+/// types 2/5 keep their type; in nominal digits their values are written E13.5), LF line
+/// ends. Every header field is written as it is: a name longer than its field (ID lines 80,
+/// entity names 10, axis labels 20 characters) or a line break in one throws
+/// std::invalid_argument instead of being cut. Throws FileError if the file cannot be opened.
 void write_uff58(const std::filesystem::path& path, const std::vector<Uff58Record>& records,
                  Uff58Digits digits = Uff58Digits::exact);
 

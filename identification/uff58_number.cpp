@@ -3,6 +3,7 @@
 
 #include <cctype>
 #include <charconv>
+#include <cmath>
 
 namespace sb::identification::detail {
 
@@ -36,7 +37,8 @@ bool parse_fortran_double(std::string_view text, double& out) {
     const char* last = s.data() + s.size();
     if (*first == '+') ++first;  // from_chars rejects a leading '+'
     const auto [ptr, ec] = std::from_chars(first, last, out);
-    return ec == std::errc() && ptr == last;
+    // from_chars also reads "nan" and "inf", which no UFF writer means as data.
+    return ec == std::errc() && ptr == last && std::isfinite(out);
 }
 
 bool parse_int(std::string_view text, int& out) {

@@ -8,7 +8,8 @@
 namespace sb::identification::detail {
 
 /// Parses a whole field as a double, accepting `E`, `e`, `D`, `d` exponents and an exponent
-/// without a letter (`1.0-100`); blanks around are ignored. False if anything else remains.
+/// without a letter (`1.0-100`); blanks around are ignored. False if anything else remains
+/// or the value is not finite (nan, inf).
 bool parse_fortran_double(std::string_view field, double& out);
 
 /// Parses a whole field as an int (blanks ignored). False on anything else.

@@ -1,12 +1,17 @@
 // Half-power, circle fit and rational fraction on exact SDOF and 2-DOF FRFs.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <complex>
+#include <string>
 #include <vector>
 
+#include "estimator_checks.hpp"
 #include "identification/circle_fit.hpp"
 #include "identification/half_power.hpp"
 #include "identification/rational_fraction.hpp"
+#include "identification/residual.hpp"
 #include "sdof_frf.hpp"
 
 namespace sb::identification {
@@ -15,109 +20,74 @@ namespace {
 using testing::grid_around;
 using testing::modal_accelerance;
 using testing::Mode;
+using namespace testing;
 
-/// The acceptance bound: damping within 2 % (relative) wherever the grid resolves.
-constexpr double kDampingTolerance = 0.02;
-/// Natural frequency: well inside the damping bound (a frequency error of δ gives a damping
-/// error of about δ/ζ), so 0.1 % of f_n.
-constexpr double kFrequencyTolerance = 1e-3;
-/// On exact SDOF data every estimator is exact up to round-off and the iterative fits'
-/// stopping rules: 1e-6 relative.
-constexpr double kExactTolerance = 1e-6;
-
-const std::vector<double> kDampingRatios = {0.001, 0.003, 0.01, 0.03, 0.1, 0.2};
-const std::vector<int> kGridSizes = {5, 7, 9, 11, 15, 21, 31, 50};
-
-struct Outcome {
-    int resolved = 0;
-    int unresolved = 0;
-};
-
-void check(const ModalEstimate& e, double fn, double zeta, double tol, Outcome& out,
-           const std::string& what) {
-    if (!e.ok()) {
-        ++out.unresolved;
-        EXPECT_FALSE(e.message.empty()) << what;
-        return;
-    }
-    ++out.resolved;
-    EXPECT_NEAR(e.damping_ratio / zeta, 1.0, tol) << what << " spread " << e.damping_spread;
-    EXPECT_NEAR(e.natural_frequency_hz / fn, 1.0, std::max(kFrequencyTolerance, tol * zeta))
-        << what;
-}
-
-std::string label(const char* method, double zeta, int n) {
-    return std::string(method) + " zeta=" + std::to_string(zeta) + " n=" + std::to_string(n);
-}
-
-TEST(Estimators, RecoverSdofDampingExactlyWhereverTheGridResolvesThePeak) {
+TEST(Estimators, RecoverSdofDampingExactlyWheneverTheGridResolvesThePeak) {
     const double fn = 6.37;
+    const Tolerance exact{kExactTolerance, kExactTolerance};
     Outcome hp, cf, rf;
     for (double zeta : kDampingRatios) {
         for (int n : kGridSizes) {
-            // Grid spanning ±4 half-bandwidths, peak between two points.
-            const auto frf =
-                modal_accelerance(grid_around(fn, zeta, n, 4.0, 0.37), {{fn, zeta, 1.0}});
-            check(half_power(frf), fn, zeta, kExactTolerance, hp, label("hp-mob", zeta, n));
-            check(half_power(frf, HalfPowerForm::accelerance), fn, zeta, kExactTolerance, hp,
-                  label("hp-acc", zeta, n));
-            check(half_power(frf, HalfPowerForm::receptance), fn, zeta, kExactTolerance, hp,
-                  label("hp-rec", zeta, n));
-            check(circle_fit(frf), fn, zeta, kExactTolerance, cf, label("circle", zeta, n));
-            check(rational_fraction_fit(frf), fn, zeta, kExactTolerance, rf, label("rfp", zeta, n));
-        }
-    }
-    // Fine grids resolve, the 5-point grid does not for every method: both paths are exercised.
-    EXPECT_GT(hp.resolved, 0);
-    EXPECT_GT(hp.unresolved, 0);
-    EXPECT_GT(cf.resolved, 0);
-    EXPECT_GT(cf.unresolved, 0);
-    EXPECT_GT(rf.resolved, 0);
-    EXPECT_GT(rf.unresolved, 0);
-}
-
-TEST(Estimators, RecoverTwoDofDampingWithinTwoPercentForWellSeparatedModes) {
-    // Modes a decade apart with equal modal constants (equal modal mass at the drive point): at
-    // the first mode the second one's residual is 2ζ(f1/f2)² of the resonant response (0.4 %
-    // at ζ = 0.2), inside the 2 % bound. The second mode sits on the first one's mass line,
-    // 2ζ(f2/f1)² of its response: only the fits with a residual (circle offset, RFP
-    // numerator) are asked to handle it, in the next test.
-    Outcome hp, cf, rf;
-    for (double zeta : kDampingRatios) {
-        for (double fn : {10.0}) {
-            for (int n : kGridSizes) {
-                const auto frf = modal_accelerance(grid_around(fn, zeta, n, 4.0, 0.37),
-                                                   {{10.0, zeta, 1.0}, {100.0, zeta, 1.0}});
-                check(half_power(frf), fn, zeta, kDampingTolerance, hp,
-                      label("hp", zeta, n) + " fn=" + std::to_string(fn));
-                check(circle_fit(frf), fn, zeta, kDampingTolerance, cf,
-                      label("circle", zeta, n) + " fn=" + std::to_string(fn));
-                check(rational_fraction_fit(frf), fn, zeta, kDampingTolerance, rf,
-                      label("rfp", zeta, n) + " fn=" + std::to_string(fn));
+            for (double shift : kGridShifts) {
+                // Grid spanning ±4 half-bandwidths.
+                const auto f = grid_around(fn, zeta, n, 4.0, shift);
+                const bool must = grid_resolves(f, fn, zeta);
+                const auto frf = modal_accelerance(f, {{fn, zeta, 1.0}});
+                check(half_power(frf), fn, zeta, exact, must, hp, label("hp-mob", zeta, n, shift));
+                check(half_power(frf, HalfPowerForm::accelerance), fn, zeta, exact,
+                      grid_resolves(f, fn, zeta, HalfPowerForm::accelerance), hp,
+                      label("hp-acc", zeta, n, shift));
+                check(half_power(frf, HalfPowerForm::receptance), fn, zeta, exact,
+                      grid_resolves(f, fn, zeta, HalfPowerForm::receptance), hp,
+                      label("hp-rec", zeta, n, shift));
+                check(circle_fit(frf), fn, zeta, exact, must, cf, label("circle", zeta, n, shift));
+                check(rational_fraction_fit(frf), fn, zeta, exact, must, rf,
+                      label("rfp", zeta, n, shift));
             }
         }
     }
-    EXPECT_GT(hp.resolved, 0);
-    EXPECT_GT(cf.resolved, 0);
-    EXPECT_GT(rf.resolved, 0);
+    // Both paths are exercised: the coarse grids are refused, the fine ones resolved.
+    for (const Outcome* o : {&hp, &cf, &rf}) {
+        EXPECT_GT(o->resolved, 0);
+        EXPECT_GT(o->unresolved, 0);
+    }
 }
 
-TEST(Estimators, CircleAndRationalFitsAbsorbTheLowerModesResidualAtTheUpperMode) {
-    // The second mode on the first one's mass line (residual 2ζ(f2/f1)² of its response): the
-    // circle's offset and the RFP numerator take it up up to ζ = 3 % (residual 6 times the
-    // resonant response); at ζ = 10 % the circle's frequency is off by 0.4 %, beyond bound.
-    Outcome cf, rf;
-    for (double zeta : {0.001, 0.003, 0.01, 0.03}) {
-        for (int n : kGridSizes) {
-            const auto frf = modal_accelerance(grid_around(100.0, zeta, n, 4.0, 0.37),
-                                               {{10.0, zeta, 1.0}, {100.0, zeta, 1.0}});
-            check(circle_fit(frf), 100.0, zeta, kDampingTolerance, cf, label("circle", zeta, n));
-            check(rational_fraction_fit(frf), 100.0, zeta, kDampingTolerance, rf,
-                  label("rfp", zeta, n));
-        }
-    }
-    EXPECT_GT(cf.resolved, 0);
-    EXPECT_GT(rf.resolved, 0);
+TEST(HalfPower, SubtractsTheLowerModesResidualAtTheUpperMode) {
+    // The upper mode of modes a decade apart, ζ = 10 %, 21 points over ±4 half-bandwidths:
+    // the lower mode's mass line skews the half-power points; without the residual the
+    // estimate is outside the bound, with it inside.
+    const double zeta = 0.1;
+    const auto frf = modal_accelerance(grid_around(100.0, zeta, 21, 4.0, 0.37),
+                                       {{10.0, zeta, 1.0}, {100.0, zeta, 1.0}});
+    ResidualOptions off;
+    off.compensate = false;
+    const auto raw = half_power(frf, HalfPowerForm::mobility, off);
+    ASSERT_TRUE(raw.ok()) << raw.message;
+    EXPECT_GT(std::abs(raw.damping_ratio / zeta - 1.0), 2.0 * kDampingTolerance)
+        << raw.damping_ratio;
+    EXPECT_EQ(raw.residual_ratio, 0.0);
+    const auto compensated = half_power(frf);
+    ASSERT_TRUE(compensated.ok()) << compensated.message;
+    EXPECT_NEAR(compensated.damping_ratio / zeta, 1.0, kDampingTolerance);
+    // The lower mode's receptance at 100 Hz over the upper mode's: 2ζ (f2²/(f2² − f1²)).
+    EXPECT_NEAR(compensated.residual_ratio, 2.0 * zeta * 100.0 / 99.0, 0.1 * 2.0 * zeta);
+}
+
+TEST(Residual, FitsNoResidualToAnSdofAndTheOtherModeToATwoDof) {
+    const auto f = grid_around(20.0, 0.05, 31, 4.0, 0.2);
+    const auto sdof = fit_residual(modal_accelerance(f, {{20.0, 0.05, 2.0}}), 20.3, 0.04, 0.1);
+    ASSERT_TRUE(sdof.ok) << sdof.message;
+    EXPECT_NEAR(sdof.natural_frequency_hz, 20.0, 20.0 * 0.05 * kExactTolerance);
+    EXPECT_NEAR(sdof.damping_ratio, 0.05, 0.05 * kExactTolerance);
+    EXPECT_LT(sdof.residual_ratio, kExactTolerance);
+    // A stiffness-line residual: a mode far above contributes ≈ A/ω_far² (real, constant).
+    const auto two = fit_residual(modal_accelerance(f, {{20.0, 0.05, 2.0}, {400.0, 0.05, 2.0}}),
+                                  20.3, 0.04, 0.1);
+    ASSERT_TRUE(two.ok) << two.message;
+    const double stiffness_line = 2.0 / std::pow(hz_to_rad_s(400.0), 2);
+    EXPECT_NEAR(std::abs(two.stiffness_term + two.mass_term) / stiffness_line, 1.0, 0.01);
+    EXPECT_NEAR(two.damping_ratio / 0.05, 1.0, kDampingTolerance);
 }
 
 TEST(HalfPower, SaysSoWhenOnlyOnePointLiesInsideTheBand) {

@@ -65,6 +65,33 @@ TEST(Frf, RelativeTransmissibilityOfABaseExcitedSdofGivesItsExactDamping) {
     }
 }
 
+TEST(Frf, AbsoluteTransmissibilityGivesTheExactDampingOnceItsConstantIsSubtracted) {
+    // T = 1 + ω²/(ωn² − ω² + 2iζωnω): accelerance shape plus 1, i.e. a mass-line residual.
+    const double fn = 30.0, zeta = 0.08;
+    const auto f = testing::grid_around(fn, zeta, 25, 4.0, 0.3);
+    std::vector<std::complex<double>> table, mass;
+    for (double fi : f) {
+        const double w = hz_to_rad_s(fi), wn = hz_to_rad_s(fn);
+        const std::complex<double> yb(0.3, -0.1);
+        table.push_back(yb);
+        mass.push_back(yb * std::complex<double>(wn * wn, 2.0 * zeta * wn * w) /
+                       std::complex<double>(wn * wn - w * w, 2.0 * zeta * wn * w));
+    }
+    const auto tr = transmissibility(f, mass, table);
+    EXPECT_EQ(tr.form, FrfForm::accelerance);
+    for (const auto& e : {half_power(tr), circle_fit(tr), rational_fraction_fit(tr)}) {
+        ASSERT_TRUE(e.ok()) << e.message;
+        EXPECT_NEAR(e.damping_ratio / zeta, 1.0, kExactTolerance);
+        EXPECT_NEAR((e.natural_frequency_hz - fn) / (zeta * fn), 0.0, kExactTolerance);
+    }
+    // Without the residual the constant skews the half-power points.
+    ResidualOptions off;
+    off.compensate = false;
+    const auto raw = half_power(tr, HalfPowerForm::mobility, off);
+    ASSERT_TRUE(raw.ok()) << raw.message;
+    EXPECT_GT(std::abs(raw.damping_ratio / zeta - 1.0), 0.01);
+}
+
 TEST(Frf, RejectsUnsortedFrequencies) {
     const Frf bad{{2.0, 1.0}, {1.0, 1.0}, FrfForm::accelerance};
     EXPECT_THROW(check_frf(bad), std::invalid_argument);

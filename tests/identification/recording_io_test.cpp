@@ -3,9 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <complex>
 #include <filesystem>
 #include <fstream>
 
+#include "core/units.hpp"
 #include "identification/file_error.hpp"
 
 namespace sb::identification {
@@ -55,11 +58,27 @@ FileError expect_error(const fs::path& dir) {
     return FileError("", 0, 0, "");
 }
 
+/// A series of `periods` periods of f at `per_period` samples per period: force cos, acc sin.
+void write_series(const fs::path& file, double f, int periods, int per_period,
+                  const std::string& header = "time_s,force,acc_damper") {
+    fs::create_directories(file.parent_path());
+    std::ofstream out(file);
+    out.precision(17);
+    out << header << '\n';
+    const int n = periods * per_period;
+    for (int k = 0; k < n; ++k) {
+        const double t = (k + 1) / (f * per_period);
+        out << t << ',' << 2.0 * std::cos(kTwoPi * f * t) << ',' << -3.0 * std::sin(kTwoPi * f * t)
+            << '\n';
+    }
+}
+
 TEST(RecordingIo, ReadsTheFormatsExampleAndRoundTripsExactly) {
     const auto dir = make_dir("good", kToml,
                               std::string(kHeader) +
                                   "H-0,0.5,6.3,converged,,1.2,1.5,0.1,4.9,0.3,6.9\n"
                                   "H-0,0.5,6.4,closest,series/p2.csv,1.1,1.4,0.2,4.8,0.2,6.7\n");
+    write_series(dir / "series" / "p2.csv", 6.4, 3, 32);
     auto rec = read_recording(dir);
     ASSERT_EQ(rec.channels.size(), 2u);
     EXPECT_EQ(rec.channels[0].name, "force");
@@ -76,19 +95,82 @@ TEST(RecordingIo, ReadsTheFormatsExampleAndRoundTripsExactly) {
     EXPECT_EQ(back.points[0].values[0].amplitude, rec.points[0].values[0].amplitude);
     EXPECT_EQ(back.damping[0].damping_ratio, rec.damping[0].damping_ratio);
     EXPECT_EQ(back.info.description, "free text");
+    EXPECT_EQ(back.points[1].history.columns, rec.points[1].history.columns);
 }
 
-TEST(RecordingIo, MissingColumnNamesTheColumnAndTheChannel) {
+TEST(RecordingIo, LoadsSeriesAndComputesMissingAmplitudesOverWholePeriods) {
+    // acc_damper's cells are empty: rms and fundamental come from the series. With t_k =
+    // (k+1)/(f N), x = -3 sin(ωt) has amplitude 3i (x = Re{X e^{iωt}}).
+    const auto dir = make_dir("fromseries", kToml,
+                              std::string(kHeader) +
+                                  "H-0,0.5,6.4,converged,series/a.csv,1.2,"
+                                  "1.5,0.1,,,\n");
+    write_series(dir / "series" / "a.csv", 6.4, 4, 25);
+    const auto rec = read_recording(dir);
+    ASSERT_EQ(rec.points.size(), 1u);
+    const auto& v = rec.points[0].values[1];
+    EXPECT_TRUE(v.from_series);
+    EXPECT_FALSE(rec.points[0].values[0].from_series);
+    EXPECT_NEAR(std::abs(v.amplitude - std::complex<double>(0.0, 3.0)), 0.0, 1e-12);
+    EXPECT_NEAR(v.rms, 3.0 / std::sqrt(2.0), 1e-12);
+    ASSERT_EQ(rec.points[0].history.time_s.size(), 100u);
+}
+
+TEST(RecordingIo, SeriesErrorsNameTheFileAndTheCell) {
+    // Unknown channel column in the series: at its header cell.
+    auto dir = make_dir("series-channel", kToml,
+                        std::string(kHeader) + "H-0,0.5,6.4,converged,series/a.csv,1,1,0,1,1,1\n");
+    write_series(dir / "series" / "a.csv", 6.4, 2, 25, "time_s,force,acc9");
+    auto e = expect_error(dir);
+    EXPECT_NE(std::string(e.what()).find("a.csv:1:14: unknown channel 'acc9'"), std::string::npos)
+        << e.what();
+    // Not whole periods.
+    dir = make_dir("series-periods", kToml,
+                   std::string(kHeader) + "H-0,0.5,6.5,converged,series/a.csv,1,1,0,1,1,1\n");
+    write_series(dir / "series" / "a.csv", 6.4, 2, 25);
+    e = expect_error(dir);
+    EXPECT_NE(e.message().find("a series must hold whole periods"), std::string::npos) << e.what();
+    // Missing file: at the points.csv cell.
+    dir = make_dir("series-missing", kToml,
+                   std::string(kHeader) + "H-0,0.5,6.4,converged,series/b.csv,1,1,0,1,1,1\n");
+    e = expect_error(dir);
+    EXPECT_NE(std::string(e.what()).find("points.csv:2:23: series file 'series/b.csv' not found"),
+              std::string::npos)
+        << e.what();
+    // Empty cells without a series.
+    dir =
+        make_dir("series-none", kToml, std::string(kHeader) + "H-0,0.5,6.4,converged,,1,1,0,,,\n");
+    e = expect_error(dir);
+    EXPECT_NE(e.message().find("are empty and the row has no series"), std::string::npos)
+        << e.what();
+}
+
+TEST(RecordingIo, MissingColumnNamesTheColumnAndTheChannelAtTheHeaderLine) {
+    // Two comment lines and a blank line precede the header: the error is on line 4.
     const auto dir =
         make_dir("missing", kToml,
+                 "# exported by hand\n# second comment\n\n"
                  "arrangement,level_g,frequency_hz,status,series,force_rms,force_re,force_im,"
                  "acc_damper_rms,acc_damper_re\nH-0,0.5,6.3,converged,,1,1,0,1,1\n");
     const auto e = expect_error(dir);
-    EXPECT_EQ(e.line(), 1);
+    EXPECT_EQ(e.line(), 4);
+    EXPECT_EQ(e.column(), 0);
     EXPECT_NE(e.message().find("missing column 'acc_damper_im' for channel 'acc_damper'"),
               std::string::npos)
         << e.what();
-    EXPECT_NE(std::string(e.what()).find("points.csv:1:"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("points.csv:4:0: "), std::string::npos) << e.what();
+}
+
+TEST(RecordingIo, NanAndInfinityCellsAreNotNumbers) {
+    for (const char* bad : {"nan", "inf", "-Infinity", "NaN"}) {
+        const auto dir = make_dir(
+            "nan", kToml,
+            std::string(kHeader) + "H-0,0.5,6.3,converged,,1.2," + bad + ",0.1,4.9,0.3,6.9\n");
+        const auto e = expect_error(dir);
+        EXPECT_EQ(e.line(), 2) << bad;
+        EXPECT_EQ(e.column(), 28) << bad;
+        EXPECT_NE(e.message().find("is not a finite number"), std::string::npos) << e.what();
+    }
 }
 
 TEST(RecordingIo, NonNumericCellGivesLineAndColumn) {
@@ -123,9 +205,10 @@ TEST(RecordingIo, TwoReferenceChannelsAreAnErrorAtTheSecondOne) {
     const auto dir = make_dir("tworef", toml, kHeader);
     const auto e = expect_error(dir);
     EXPECT_EQ(e.line(), 19);
+    EXPECT_EQ(e.column(), 11);  // the second channel's name in [channels.force2]
     EXPECT_NE(e.message().find("two reference channels: 'force' and 'force2'"), std::string::npos)
         << e.what();
-    EXPECT_NE(std::string(e.what()).find("recording.toml:19:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("recording.toml:19:11: "), std::string::npos) << e.what();
 }
 
 TEST(RecordingIo, NoReferenceChannelAndTwoControlChannelsAreErrors) {

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <bit>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +22,8 @@ namespace fs = std::filesystem;
 constexpr double kNominalRelative = 1e-12;
 /// Abscissa in E13.5: 6 significant digits.
 constexpr double kAbscissaRelative = 1e-5;
+/// Single-precision ordinates in E13.5: 6 significant digits (relative error ≤ 5e-6).
+constexpr double kSingleRelative = 1e-5;
 
 fs::path temp_file(const std::string& name) {
     const auto dir = fs::temp_directory_path() / "sb_identification_uff58_test";
@@ -32,17 +36,56 @@ void write_text(const fs::path& p, const std::string& s) {
     f << s;
 }
 
+void expect_same_axis(const Uff58Axis& a, const Uff58Axis& b, const std::string& what) {
+    EXPECT_EQ(a.data_type, b.data_type) << what;
+    EXPECT_EQ(a.length_exponent, b.length_exponent) << what;
+    EXPECT_EQ(a.force_exponent, b.force_exponent) << what;
+    EXPECT_EQ(a.temperature_exponent, b.temperature_exponent) << what;
+    EXPECT_EQ(a.label, b.label) << what;
+    EXPECT_EQ(a.units, b.units) << what;
+}
+
+/// Every field of records 1–11.
+void expect_same_header(const Uff58Record& a, const Uff58Record& b) {
+    EXPECT_EQ(a.id, b.id);
+    EXPECT_EQ(a.function_type, b.function_type);
+    EXPECT_EQ(a.function_id, b.function_id);
+    EXPECT_EQ(a.version, b.version);
+    EXPECT_EQ(a.load_case, b.load_case);
+    EXPECT_EQ(a.response_name, b.response_name);
+    EXPECT_EQ(a.response_node, b.response_node);
+    EXPECT_EQ(a.response_direction, b.response_direction);
+    EXPECT_EQ(a.reference_name, b.reference_name);
+    EXPECT_EQ(a.reference_node, b.reference_node);
+    EXPECT_EQ(a.reference_direction, b.reference_direction);
+    EXPECT_EQ(a.ordinate_type, b.ordinate_type);
+    EXPECT_EQ(a.z_value, b.z_value);
+    expect_same_axis(a.abscissa, b.abscissa, "abscissa");
+    expect_same_axis(a.ordinate, b.ordinate, "ordinate");
+    expect_same_axis(a.denominator, b.denominator, "denominator");
+    expect_same_axis(a.z_axis, b.z_axis, "z axis");
+}
+
 std::vector<Uff58Record> sample_records() {
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     auto frf = testing::modal_accelerance(testing::grid_around(6.37, 0.03, 17, 4.0, 0.1),
                                           {{6.37, 0.03, 1.0}});
     Uff58Record a = to_uff58(frf, "accelerance beam H-0 0.5 g");
-    a.response_name = "acc_damper";
+    a.id = {"accelerance beam H-0 0.5 g", "run 17", "25-Nov-26 10:00:00", "load case one",
+            std::string(80, 'x')};
+    a.function_id = 12;
+    a.version = 3;
+    a.load_case = 0;
+    a.response_name = "acc damper";  // 10 characters, with a blank
     a.response_node = 4;
-    a.response_direction = 2;
+    a.response_direction = -2;
+    a.reference_name = "shaker";
     a.reference_node = 1;
     a.reference_direction = 2;
+    a.z_value = 1.0 / 3.0;
+    a.z_axis = {1, 0, 0, 0, "Level", "g RMS"};
+    a.ordinate.units = "m/s^2 per 20 chars.";
     Uff58Record t;
     t.function_type = 1;
     t.ordinate_type = 4;
@@ -52,7 +95,17 @@ std::vector<Uff58Record> sample_records() {
         t.x.push_back(i / 1024.0);
         t.y.emplace_back(u(rng) * 1e-3, 0.0);
     }
-    return {a, t};
+    // Single precision keeps its type; its values are floats.
+    Uff58Record c = to_uff58(frf, "single");
+    c.ordinate_type = 5;
+    for (auto& y : c.y) {
+        y = {static_cast<double>(static_cast<float>(y.real())),
+             static_cast<double>(static_cast<float>(y.imag()))};
+    }
+    Uff58Record d = t;
+    d.ordinate_type = 2;
+    for (auto& y : d.y) y = {static_cast<double>(static_cast<float>(y.real())), 0.0};
+    return {a, t, c, d};
 }
 
 TEST(Uff58, RoundTripsEveryNumberBitForBitWithExactDigits) {
@@ -62,15 +115,10 @@ TEST(Uff58, RoundTripsEveryNumberBitForBitWithExactDigits) {
     const auto back = read_uff58(p);
     ASSERT_EQ(back.size(), records.size());
     for (std::size_t k = 0; k < records.size(); ++k) {
+        SCOPED_TRACE("record " + std::to_string(k));
         EXPECT_EQ(back[k].x, records[k].x);
         EXPECT_EQ(back[k].y, records[k].y);
-        EXPECT_EQ(back[k].function_type, records[k].function_type);
-        EXPECT_EQ(back[k].response_name, records[k].response_name);
-        EXPECT_EQ(back[k].response_node, records[k].response_node);
-        EXPECT_EQ(back[k].response_direction, records[k].response_direction);
-        EXPECT_EQ(back[k].ordinate.data_type, records[k].ordinate.data_type);
-        EXPECT_EQ(back[k].abscissa.units, records[k].abscissa.units);
-        EXPECT_EQ(back[k].id[0], records[k].id[0]);
+        expect_same_header(back[k], records[k]);
     }
     // Every line of the file stays within 80 columns.
     std::ifstream f(p);
@@ -82,13 +130,20 @@ TEST(Uff58, NominalLayoutKeepsThirteenDigitsAndRewritesIdentically) {
     const auto p = temp_file("nominal.uff");
     write_uff58(p, records, Uff58Digits::nominal);
     const auto back = read_uff58(p);
-    ASSERT_EQ(back.size(), 2u);
-    for (std::size_t k = 0; k < 2; ++k) {
+    ASSERT_EQ(back.size(), records.size());
+    for (std::size_t k = 0; k < records.size(); ++k) {
+        SCOPED_TRACE("record " + std::to_string(k));
+        auto expected = records[k];
+        expected.z_value = back[k].z_value;  // E13.5
+        expect_same_header(back[k], expected);
+        EXPECT_NEAR(back[k].z_value, records[k].z_value, kAbscissaRelative);
+        const bool single = records[k].ordinate_type == 2 || records[k].ordinate_type == 5;
+        const double rel = single ? kSingleRelative : kNominalRelative;
         for (std::size_t i = 0; i < records[k].y.size(); ++i) {
             EXPECT_NEAR(back[k].y[i].real(), records[k].y[i].real(),
-                        kNominalRelative * std::abs(records[k].y[i]));
+                        rel * std::abs(records[k].y[i]));
             EXPECT_NEAR(back[k].y[i].imag(), records[k].y[i].imag(),
-                        kNominalRelative * std::abs(records[k].y[i]));
+                        rel * std::abs(records[k].y[i]));
             EXPECT_NEAR(back[k].x[i], records[k].x[i], kAbscissaRelative * records[k].x.back());
         }
     }
@@ -96,10 +151,56 @@ TEST(Uff58, NominalLayoutKeepsThirteenDigitsAndRewritesIdentically) {
     const auto p2 = temp_file("nominal2.uff");
     write_uff58(p2, back, Uff58Digits::nominal);
     const auto again = read_uff58(p2);
-    for (std::size_t k = 0; k < 2; ++k) {
+    for (std::size_t k = 0; k < records.size(); ++k) {
         EXPECT_EQ(again[k].y, back[k].y);
         EXPECT_EQ(again[k].x, back[k].x);
     }
+}
+
+TEST(Uff58, RefusesToWriteANameLongerThanItsFieldInsteadOfCuttingIt) {
+    auto records = sample_records();
+    records[0].response_name = "acc_damper1";  // 11 characters in a 10-character field
+    EXPECT_THROW(write_uff58(temp_file("long.uff"), records), std::invalid_argument);
+    records = sample_records();
+    records[0].ordinate.label = std::string(21, 'a');
+    EXPECT_THROW(write_uff58(temp_file("long.uff"), records), std::invalid_argument);
+    records = sample_records();
+    records[0].id[2] = std::string(81, 'a');
+    EXPECT_THROW(write_uff58(temp_file("long.uff"), records), std::invalid_argument);
+}
+
+TEST(Uff58, ReadsAFileWhoseLinesArePaddedWithBlanksToEightyColumns) {
+    const std::string lines[] = {
+        "    -1",
+        "    58",
+        "padded",
+        "NONE",
+        "NONE",
+        "NONE",
+        "NONE",
+        "    4         1    0         0 acc                4   2 force              1   2",
+        "         6         2         0  0.00000E+00  0.00000E+00  2.50000E-01",
+        "        18    0    0    0 Frequency            Hz",
+        "        12    1    0    0 Acceleration         m/s^2",
+        "        13    0    1    0 Force                N",
+        "         0    0    0    0 NONE                 NONE",
+        "  1.00000E+01  1.250000000000E+00 -2.500000000000E-01",
+        "  1.05000E+01  2.000000000000E+00 -1.000000000000E+00",
+        "    -1"};
+    std::string text;
+    for (const auto& l : lines) text += l + std::string(80 - l.size(), ' ') + "\r\n";
+    const auto p = temp_file("padded.uff");
+    write_text(p, text);
+    const auto r = read_uff58(p);
+    ASSERT_EQ(r.size(), 1u);
+    EXPECT_EQ(r[0].id[0], "padded");
+    EXPECT_EQ(r[0].response_name, "acc");
+    EXPECT_EQ(r[0].reference_direction, 2);
+    EXPECT_EQ(r[0].z_value, 0.25);
+    EXPECT_EQ(r[0].abscissa.units, "Hz");
+    EXPECT_EQ(r[0].z_axis.label, "NONE");
+    EXPECT_EQ(r[0].x, (std::vector<double>{10.0, 10.5}));
+    EXPECT_EQ(r[0].y[1], std::complex<double>(2.0, -1.0));
 }
 
 TEST(Uff58, ReadsAHandWrittenFileWithDExponentsPaddingGluedFieldsAndOtherDatasets) {
@@ -185,6 +286,65 @@ TEST(Uff58, ReadsBinary58bWithAWrongByteCountAndAStrayCrLf) {
     EXPECT_EQ(r[0].x, (std::vector<double>{5.0, 6.0}));
     EXPECT_EQ(r[0].y[0], std::complex<double>(0.1, -0.2));
     EXPECT_EQ(r[0].y[1], std::complex<double>(-1.0e-300, 12345.678));
+}
+
+/// Header of a binary dataset 58b (records 1–11) with the given id line and record 7.
+std::string binary_header(const std::string& id_line, const std::string& record7) {
+    return "    -1\n" + id_line + "\nbin\nNONE\nNONE\nNONE\nNONE\n" +
+           "    4         1    0         0 acc                4   2 force              1   2\n" +
+           record7 + "\n" +
+           "        18    0    0    0 Frequency            Hz\n"
+           "        12    1    0    0 Acceleration         m/s^2\n"
+           "        13    0    1    0 Force                N\n"
+           "         0    0    0    0 NONE                 NONE\n";
+}
+
+/// The bytes of values of type T, in big- or little-endian order.
+template <typename T>
+std::string bytes_of(const std::vector<double>& values, bool big_endian) {
+    std::string out;
+    for (double v : values) {
+        const T t = static_cast<T>(v);
+        char b[sizeof(T)];
+        std::memcpy(b, &t, sizeof(T));
+        const bool host_big = std::endian::native == std::endian::big;
+        if (big_endian != host_big) std::reverse(b, b + sizeof(T));
+        out.append(b, sizeof(T));
+    }
+    return out;
+}
+
+TEST(Uff58, ReadsBigEndianBinary58b) {
+    std::string s = binary_header(
+        "    58b     2     2          11          48     0     0           0           0",
+        "         6         2         0  0.00000E+00  0.00000E+00  0.00000E+00");
+    s += bytes_of<double>({5.0, 0.1, -0.2, 6.0, -1.0e-300, 12345.678}, true);
+    s += "    -1\n";
+    const auto p = temp_file("bin-big.uff");
+    write_text(p, s);
+    const auto r = read_uff58(p);
+    ASSERT_EQ(r.size(), 1u);
+    EXPECT_EQ(r[0].x, (std::vector<double>{5.0, 6.0}));
+    EXPECT_EQ(r[0].y[1], std::complex<double>(-1.0e-300, 12345.678));
+}
+
+TEST(Uff58, ReadsSinglePrecisionEvenlySpacedBinary58bWithTheSpacedHeader) {
+    // Complex single (type 5), even spacing from 10 Hz by 0.5 Hz: 4 bytes per value, no x.
+    // The id line is written "58 b" by some tools.
+    std::string s = binary_header(
+        "    58 b     1     2          11          24     0     0           0           0",
+        "         5         3         1  1.00000E+01  5.00000E-01  0.00000E+00");
+    const std::vector<double> v = {0.5, -0.25, 1.5, 2.0, -3.0, 0.125};  // exact in float
+    s += bytes_of<float>(v, false);
+    s += "\n    -1\n";
+    const auto p = temp_file("bin-single.uff");
+    write_text(p, s);
+    const auto r = read_uff58(p);
+    ASSERT_EQ(r.size(), 1u);
+    EXPECT_EQ(r[0].ordinate_type, 5);
+    EXPECT_EQ(r[0].x, (std::vector<double>{10.0, 10.5, 11.0}));
+    EXPECT_EQ(r[0].y[0], std::complex<double>(0.5, -0.25));
+    EXPECT_EQ(r[0].y[2], std::complex<double>(-3.0, 0.125));
 }
 
 TEST(Uff58, ReportsFileLineAndColumnOfABadNumber) {

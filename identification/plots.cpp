@@ -1,0 +1,214 @@
+// Plot data, gnuplot script and rendering (gnuplot is a program, not a library: it is run).
+#include "identification/plots.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "core/units.hpp"
+#include "identification/file_error.hpp"
+
+namespace sb::identification {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string file_safe(const std::string& name) {
+    std::string out = name.empty() ? "unnamed" : name;
+    for (char& c : out) {
+        const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+                        (c >= '0' && c <= '9') || c == '-' || c == '_' || c == '.';
+        if (!ok) c = '_';
+    }
+    return out;
+}
+
+/// A gnuplot single-quoted string: a quote inside is doubled.
+std::string quoted(const std::string& s) {
+    std::string out = "'";
+    for (char c : s) {
+        out += c;
+        if (c == '\'') out += '\'';
+    }
+    return out + "'";
+}
+
+/// A shell single-quoted string.
+std::string shell_quoted(const std::string& s) {
+    std::string out = "'";
+    for (char c : s) {
+        if (c == '\'') {
+            out += "'\\''";
+        } else {
+            out += c;
+        }
+    }
+    return out + "'";
+}
+
+std::string number(double v) {
+    if (!std::isfinite(v)) return "NaN";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.10g", v);
+    return buf;
+}
+
+std::string level_title(double level_g) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", level_g);
+    return buf;
+}
+
+std::string form_name(FrfForm form) {
+    switch (form) {
+        case FrfForm::receptance:
+            return "receptance";
+        case FrfForm::mobility:
+            return "mobility";
+        case FrfForm::accelerance:
+            return "accelerance";
+    }
+    return "FRF";
+}
+
+void write_file(const fs::path& file, const std::string& text) {
+    std::ofstream f(file, std::ios::binary);
+    if (!f) throw FileError(file.string(), 0, 0, "cannot open the file for writing");
+    f << text;
+}
+
+}  // namespace
+
+PlotResult write_plots(const fs::path& out_dir, const std::vector<LevelIdentification>& levels,
+                       const PlotOptions& options) {
+    PlotResult result;
+    const fs::path dir = out_dir / "plots";
+    fs::create_directories(dir);
+    std::vector<std::string> order;
+    std::map<std::string, std::vector<const LevelIdentification*>> by_arrangement;
+    for (const auto& l : levels) {
+        if (by_arrangement.find(l.arrangement) == by_arrangement.end()) {
+            order.push_back(l.arrangement);
+        }
+        by_arrangement[l.arrangement].push_back(&l);
+    }
+    const char* const methods[] = {"half-power", "circle-fit", "rational-fraction"};
+    std::ostringstream gp;
+    gp << "# Plots of shakerbench identify; run from this directory: gnuplot plots.gp\n"
+       << "set terminal svg size 900,700 dynamic\nset grid\nset key outside right\n"
+       << "set datafile missing 'NaN'\n";
+    for (const auto& arrangement : order) {
+        const auto& items = by_arrangement[arrangement];
+        const std::string name = file_safe(arrangement);
+        std::ostringstream frf;
+        std::ostringstream curve;
+        frf << "# frequency_hz magnitude phase_deg; one block per level\n";
+        curve << "# level zeta_half_power zeta_circle_fit zeta_rational_fraction "
+                 "fn_half_power_hz fn_circle_fit_hz fn_rational_fraction_hz\n";
+        bool method_has_value[3] = {false, false, false};
+        for (std::size_t b = 0; b < items.size(); ++b) {
+            const auto* l = items[b];
+            if (b > 0) frf << "\n\n";
+            frf << "# level " << level_title(l->level_g) << '\n';
+            for (std::size_t i = 0; i < l->frf.frequency_hz.size(); ++i) {
+                const auto v = l->frf.value[i];
+                frf << number(l->frf.frequency_hz[i]) << ' ' << number(std::abs(v)) << ' '
+                    << number(std::arg(v) * 180.0 / kPi) << '\n';
+            }
+            const ModalEstimate* e[3] = {&l->half_power, &l->circle_fit, &l->rational_fraction};
+            const double nan = std::numeric_limits<double>::quiet_NaN();
+            curve << number(l->level_g);
+            for (int k = 0; k < 3; ++k) {
+                curve << ' ' << number(e[k]->ok() ? e[k]->damping_ratio * 100.0 : nan);
+                method_has_value[k] = method_has_value[k] || e[k]->ok();
+            }
+            for (int k = 0; k < 3; ++k) {
+                curve << ' ' << number(e[k]->ok() ? e[k]->natural_frequency_hz : nan);
+            }
+            curve << '\n';
+        }
+        const fs::path frf_file = dir / (name + "-frf.dat");
+        const fs::path curve_file = dir / (name + "-damping.dat");
+        write_file(frf_file, frf.str());
+        write_file(curve_file, curve.str());
+        result.data.push_back(frf_file);
+        result.data.push_back(curve_file);
+
+        // FRF: magnitude (log) and phase, one curve per level.
+        const fs::path frf_svg = out_dir / (name + "-frf.svg");
+        const std::string form = form_name(items.front()->frf.form);
+        gp << "\nset output " << quoted("../" + frf_svg.filename().string()) << '\n'
+           << "set multiplot layout 2,1 title " << quoted("FRF (" + form + "), " + arrangement)
+           << "\nset ylabel " << quoted("|" + form + "|") << "\nset logscale y\nplot ";
+        for (std::size_t b = 0; b < items.size(); ++b) {
+            gp << (b ? ", " : "") << quoted(frf_file.filename().string()) << " index " << b
+               << " using 1:2 with linespoints title "
+               << quoted(level_title(items[b]->level_g) + " g");
+        }
+        gp << "\nunset logscale y\nset ylabel 'phase [deg]'\nset xlabel 'frequency [Hz]'\nplot ";
+        for (std::size_t b = 0; b < items.size(); ++b) {
+            gp << (b ? ", " : "") << quoted(frf_file.filename().string()) << " index " << b
+               << " using 1:3 with linespoints title "
+               << quoted(level_title(items[b]->level_g) + " g");
+        }
+        gp << "\nunset multiplot\nunset xlabel\n";
+        result.svg.push_back(frf_svg);
+
+        // Damping and natural frequency versus level, one curve per method with a number.
+        if (!(method_has_value[0] || method_has_value[1] || method_has_value[2])) continue;
+        const fs::path damping_svg = out_dir / (name + "-damping.svg");
+        gp << "\nset output " << quoted("../" + damping_svg.filename().string()) << '\n'
+           << "set multiplot layout 2,1 title "
+           << quoted("Damping and natural frequency, " + arrangement)
+           << "\nset ylabel 'damping ratio [%]'\nplot ";
+        for (int pass = 0; pass < 2; ++pass) {
+            bool first = true;
+            for (int k = 0; k < 3; ++k) {
+                if (!method_has_value[k]) continue;
+                gp << (first ? "" : ", ") << quoted(curve_file.filename().string())
+                   << " using 1:" << (2 + k + 3 * pass) << " with linespoints title "
+                   << quoted(methods[k]);
+                first = false;
+            }
+            if (pass == 0) {
+                gp << "\nset ylabel 'natural frequency [Hz]'\nset xlabel "
+                   << quoted(options.level_axis) << "\nplot ";
+            }
+        }
+        gp << "\nunset multiplot\nunset xlabel\n";
+        result.svg.push_back(damping_svg);
+    }
+    result.script = dir / "plots.gp";
+    write_file(result.script, gp.str());
+
+    const std::string how = "cd " + shell_quoted(dir.string()) + " && gnuplot plots.gp";
+    if (!options.render) {
+        result.message = "plots not rendered; to make the SVGs run: " + how;
+        return result;
+    }
+    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
+        result.message = "gnuplot not found on PATH; to make the SVGs run: " + how;
+        return result;
+    }
+    if (std::system((how + " >gnuplot.log 2>&1").c_str()) != 0) {
+        result.message = "gnuplot failed on " + result.script.string() + " (see " +
+                         (dir / "gnuplot.log").string() + ")";
+        return result;
+    }
+    result.rendered = true;
+    for (const auto& svg : result.svg) {
+        if (!fs::exists(svg)) {
+            result.rendered = false;
+            result.message = "gnuplot did not write " + svg.string() + " (see " +
+                             (dir / "gnuplot.log").string() + ")";
+        }
+    }
+    return result;
+}
+
+}  // namespace sb::identification

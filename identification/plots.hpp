@@ -1,0 +1,42 @@
+// Plots of identified levels: data files, a gnuplot script, and SVGs when gnuplot is installed.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "identification/damping_curve.hpp"
+
+namespace sb::identification {
+
+/// Options of write_plots.
+struct PlotOptions {
+    /// Label of the level axis of the damping plot (a UFF file's records are numbered).
+    std::string level_axis = "level [g RMS]";
+    /// Run gnuplot when it is on PATH; false only writes the data and the script.
+    bool render = true;
+};
+
+/// What write_plots wrote and whether gnuplot made the SVGs.
+struct PlotResult {
+    std::vector<std::filesystem::path> data;  ///< data files written
+    std::filesystem::path script;             ///< the gnuplot script
+    std::vector<std::filesystem::path> svg;   ///< the SVGs the script makes
+    bool rendered = false;                    ///< gnuplot ran and made every SVG
+    std::string message;  ///< for the user: how to render, or why gnuplot failed; empty if ok
+};
+
+/// For every arrangement of `levels` (in order of first appearance) writes into
+/// out_dir/plots the data files `<arrangement>-frf.dat` (frequency, |FRF|, phase in degrees;
+/// one block per level) and `<arrangement>-damping.dat` (level, ζ and f_n by half-power,
+/// circle fit and rational fraction; NaN where a method gave no number), and one script
+/// `plots.gp`. The script makes out_dir/<arrangement>-frf.svg (magnitude and phase, one curve
+/// per level) and out_dir/<arrangement>-damping.svg (damping ratio and natural frequency
+/// versus level, one curve per method). When gnuplot is on PATH it is run (its messages go to
+/// plots/gnuplot.log); otherwise the message says how to run it. Arrangement names are made
+/// file-safe (characters other than letters, digits, '-', '_', '.' become '_').
+PlotResult write_plots(const std::filesystem::path& out_dir,
+                       const std::vector<LevelIdentification>& levels,
+                       const PlotOptions& options = {});
+
+}  // namespace sb::identification
