@@ -185,17 +185,18 @@ void CoupledSpecimen::start_from_linear_steady_state(double amplitude, double ti
         if (!d.solver) {
             continue;
         }
+        // The bed's centre of gravity from its enclosure-frame positions and the mounting
+        // (not from the solver's world positions, which sit wherever its last pose was).
         double mass_kg = 0.0;
         Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
         const auto& state = d.solver->particles();
         for (std::size_t k = 0; k < state.size(); ++k) {
             const double m = 1.0 / state.inv_mass[k];
             mass_kg += m;
-            first_moment += m * state.x[k];
+            first_moment += m * local[i].positions_m[k];
         }
         const Eigen::Vector3d weight = mass_kg * d.solver->options().gravity_m_s2;
-        const Eigen::Vector3d cg = first_moment / mass_kg;
-        const Eigen::Vector3d arm = cg - model_->point(d.point).position_m;
+        const Eigen::Vector3d arm = d.offset_m + d.mount_rotation * (first_moment / mass_kg);
         const Eigen::VectorXd f = model_->point_load(d.point, weight, arm.cross(weight));
         for (int m = 0; m < modes; ++m) {
             const double w = basis_->modes[static_cast<std::size_t>(m)].frequency_hz * kTwoPi;
