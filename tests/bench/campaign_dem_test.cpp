@@ -25,15 +25,28 @@ TEST(Campaign, ARealH0CampaignDampsWellAboveTheEmptyBeam) {
     CampaignRunOptions options;
     options.out_dir = fresh_dir("real");
     options.config_text = text;
+    options.threads = 2;
     const auto summary = run_campaign(config, options);
     EXPECT_EQ(summary.points, 18);
     EXPECT_EQ(summary.converged + summary.limit_cycle + summary.closest, 18);
+    // A real bed scatters from period to period: a few points may spend their budget, but
+    // most must reach the target.
+    constexpr int kMostClosest = 3;
+    EXPECT_LE(summary.closest, kMostClosest);
 
     const auto recording = identification::read_recording(options.out_dir);
+    ASSERT_EQ(recording.points.size(), 18u);
+    const auto acc = recording.channel_index("acc_damper");
+    const double tolerance = config.campaign.controller.tolerance;
+    // The recorded RMS is over the whole window, the controller's level the mean of the
+    // periods' RMS values; for values within the tolerance of each other the two differ by
+    // less than a tenth of a percent.
+    constexpr double kWindowRmsOverMeanRms = 1e-3;
     for (const auto& row : recording.points) {
-        EXPECT_TRUE(row.status == "converged" || row.status == "limit-cycle-2" ||
-                    row.status == "closest")
-            << row.status;
+        if (row.status == "closest") continue;
+        const double target = 9.80665 * row.level_g;
+        EXPECT_NEAR(row.values[acc].rms / target, 1.0, tolerance + kWindowRmsOverMeanRms)
+            << row.status << " at " << row.level_g << " g, " << row.frequency_hz << " Hz";
     }
     // "Well above": at least twice the empty beam's 0.5 % at 2 and 3 g, by every method that
     // resolved the band (and at least one did at each level).
