@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iomanip>
 #include <mutex>
+#include <optional>
 #include <sstream>
 
 #include "bench/arrangement.hpp"
@@ -28,6 +29,7 @@
 #include "control/controller.hpp"
 #include "core/units.hpp"
 #include "dem/setup.hpp"
+#include "structure/frf.hpp"
 
 namespace sb::bench {
 namespace {
@@ -318,6 +320,7 @@ SweepCheckpoint run_sweep(const Sweep& sweep, Shared& shared, std::vector<std::s
                                               f);
     };
 
+    const Eigen::Vector3d direction = prepared.structure.excitation.direction.normalized();
     const DrivenMode driven_mode(prepared.estimate_model, prepared.estimate_basis,
                                  prepared.structure.excitation, campaign.control_point,
                                  prepared.first_mode_hz);
@@ -352,18 +355,26 @@ SweepCheckpoint run_sweep(const Sweep& sweep, Shared& shared, std::vector<std::s
         // Warm start: the previous amplitude scaled by the gain ratio the previous point's
         // equivalent mode predicts (the linear model's ratio when there is none).
         double start = checkpoint.next_amplitude;
+        std::optional<std::complex<double>> predicted;
         if (i > 0) {
             const double previous_f = frequencies[static_cast<std::size_t>(i - 1)];
             start *= linear_gain(previous_f) / linear_gain(f);
             const auto& previous = checkpoint.rows.back();
             const std::complex<double> measured =
                 previous.values[1].amplitude / previous.values[0].amplitude;
-            if (const auto predicted = driven_mode.predict(measured, previous_f, f)) {
+            predicted = driven_mode.predict(measured, previous_f, f);
+            if (predicted) {
                 start = checkpoint.next_amplitude * std::abs(measured) / std::abs(*predicted);
             }
-        }
-        if (campaign.start_points_linear) {
-            specimen.start_from_linear_steady_state(start, 0.0);
+            using Start = CampaignSpec::PointStart;
+            if (campaign.point_start == Start::linear_steady_state) {
+                specimen.start_from_linear_steady_state(start, 0.0);
+            } else if (campaign.point_start == Start::equivalent_steady_state && predicted) {
+                const auto linear = structure::modal_accelerance(
+                    prepared.estimate_model, prepared.estimate_basis, campaign.control_point,
+                    direction, prepared.structure.excitation.point, direction, f);
+                specimen.start_from_linear_steady_state(start, 0.0, *predicted / linear);
+            }
         }
         report_start(shared, sweep, i, f);
         control::AmplitudeController controller(controller_options);

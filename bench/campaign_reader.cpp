@@ -140,9 +140,15 @@ CampaignSpec read_campaign(Section& root, Section& campaign) {
                                          "named point whose RMS acceleration is controlled");
     spec.seed = static_cast<std::uint64_t>(
         std::max(0, campaign.integer("seed", 1, "seed of the particle filling")));
-    spec.start_points_linear =
-        campaign.choice("point_start", "previous-state", {"linear-steady-state", "previous-state"},
-                        "how the structure starts each point") == "linear-steady-state";
+    const std::string point_start =
+        campaign.choice("point_start", "previous-state",
+                        {"previous-state", "linear-steady-state", "equivalent-steady-state"},
+                        "how the structure starts each point after the first");
+    spec.point_start = point_start == "linear-steady-state"
+                           ? CampaignSpec::PointStart::linear_steady_state
+                       : point_start == "equivalent-steady-state"
+                           ? CampaignSpec::PointStart::equivalent_steady_state
+                           : CampaignSpec::PointStart::previous_state;
     spec.response_points =
         campaign.strings("response_points", "named points recorded besides the control point");
     const std::vector<std::string> wanted =

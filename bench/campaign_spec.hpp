@@ -84,13 +84,17 @@ struct CampaignSpec {
     control::ControllerOptions controller;
     OutputSpec output;
     std::uint64_t seed = 1;  ///< particle filling
-    /// Every point after the first of a sweep starts the structure from its linear steady
-    /// state at the new frequency and start amplitude (particles keep their state); false
-    /// (default, design.md): from the previous point's state, structure and particles. The
-    /// linear start is exact for a linear specimen, whose 0.5 % damping needs about
-    /// 1/(2 pi zeta) = 32 periods per e-fold to forget a frequency step; with particles the
-    /// previous state is closer to the new steady state than the 0.5 %-damped linear one.
-    bool start_points_linear = false;
+    /// How the structure starts every point after the first of a sweep (the first always
+    /// starts from the linear steady state, the particles from their settled bed; later
+    /// points keep the particles' state):
+    /// - previous_state (default, design.md): where the previous point left it;
+    /// - linear_steady_state: the linear steady state at the new frequency and start
+    ///   amplitude, exact for a linear specimen but, with 0.5 % damping, far from a
+    ///   particle-damped beam's response near resonance;
+    /// - equivalent_steady_state: that state scaled in amplitude and phase to the response
+    ///   the previous point's equivalent driven mode predicts (bench/driven_mode.hpp).
+    enum class PointStart { previous_state, linear_steady_state, equivalent_steady_state };
+    PointStart point_start = PointStart::previous_state;
 };
 
 }  // namespace sb::bench

@@ -181,7 +181,11 @@ std::string resolved_config_toml(const CampaignConfig& config, std::string_view 
     campaign.insert("control_point", c.control_point);
     campaign.insert("response_points", strings(c.response_points));
     campaign.insert("point_start",
-                    c.start_points_linear ? "linear-steady-state" : "previous-state");
+                    c.point_start == CampaignSpec::PointStart::linear_steady_state
+                        ? "linear-steady-state"
+                    : c.point_start == CampaignSpec::PointStart::equivalent_steady_state
+                        ? "equivalent-steady-state"
+                        : "previous-state");
     campaign.insert("seed", static_cast<std::int64_t>(c.seed));
     campaign.insert("frequencies", frequencies(c.frequencies));
     root.insert("campaign", campaign);

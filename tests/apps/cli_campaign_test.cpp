@@ -41,7 +41,8 @@ std::filesystem::path write_small_campaign(const std::filesystem::path& dir) {
 }
 
 TEST(Cli, AKilledCampaignResumesToTheSameFilesAsAnUninterruptedOne) {
-    const auto dir = temp_dir("resume");
+    // The process id keeps concurrent runs from resuming each other's checkpoints.
+    const auto dir = temp_dir("resume-" + std::to_string(getpid()));
     const auto config = write_small_campaign(dir);
     const auto whole = dir / "whole";
     const auto resumed = dir / "resumed";
@@ -95,7 +96,7 @@ TEST(Cli, AKilledCampaignResumesToTheSameFilesAsAnUninterruptedOne) {
 }
 
 TEST(Cli, RunWithABadConfigExitsTwoBeforeSimulating) {
-    const auto dir = temp_dir("run-bad");
+    const auto dir = temp_dir("run-bad-" + std::to_string(getpid()));
     const auto file = dir / "bad.toml";
     std::ofstream(file) << file_text(std::string(SB_SOURCE_DIR) + "/configs/paper000-h0.toml")
                         << "\n[dampers.pd2]\npoint = \"nowhere\"\n";

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -27,8 +28,11 @@ inline std::string paper000_h0_with(const std::vector<std::pair<std::string, std
     return text;
 }
 
+/// An empty directory for one test of this process: the process id keeps concurrent runs
+/// (other build trees, other users) from resuming each other's checkpoints.
 inline std::filesystem::path fresh_dir(const std::string& name) {
-    const auto dir = std::filesystem::temp_directory_path() / ("shakerbench-campaign-" + name);
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("shakerbench-campaign-" + std::to_string(::getpid()) + "-" + name);
     std::filesystem::remove_all(dir);
     return dir;
 }
