@@ -26,4 +26,33 @@ Eigen::Matrix3d mounting_rotation(const ArrangementSpec& arrangement) {
     return r;
 }
 
+DamperMounting damper_mounting(const ArrangementSpec& arrangement, const DamperSpec& damper) {
+    DamperMounting m;
+    m.rotation = mounting_rotation(arrangement);
+    const Eigen::Vector3d bottom(0.0, 0.0, damper.bottom_thickness_m);
+    // Where the enclosure stands at 0 deg: the beam face under it.
+    const Eigen::Vector3d on_beam = damper.mount_offset_m - bottom;
+    // The wedge lies on one cathetus across y, from -c/2 to +c/2 under the enclosure, its
+    // right angle at y = -c/2 (the axis tilts towards +y). The hypotenuse's midpoint, where
+    // the enclosure stands, is c/2 above the beam face; the triangle's centroid is a third
+    // of the way from the right angle along each leg.
+    const double c = arrangement.block_cathetus_m;
+    m.mounting_face_m = on_beam + Eigen::Vector3d(0.0, 0.0, 0.5 * c) + arrangement.mount_lift_m;
+    m.block_cg_m = on_beam + Eigen::Vector3d(0.0, -c / 2.0 + c / 3.0, c / 3.0);
+    m.origin_m = m.mounting_face_m + m.rotation * bottom;
+    return m;
+}
+
+structure::LumpedMass mounted_enclosure_mass(const structure::LumpedMass& at_zero,
+                                             const DamperSpec& damper,
+                                             const DamperMounting& mounting) {
+    structure::LumpedMass m = at_zero;
+    // At 0 deg the enclosure frame is the structure frame shifted to mount_offset_m.
+    m.offset_m = mounting.from_enclosure(at_zero.offset_m - damper.mount_offset_m);
+    const Eigen::Matrix3d inertia =
+        mounting.rotation * at_zero.inertia_kg_m2.asDiagonal() * mounting.rotation.transpose();
+    m.inertia_kg_m2 = inertia.diagonal();
+    return m;
+}
+
 }  // namespace sb::bench

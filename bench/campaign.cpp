@@ -7,18 +7,21 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <ctime>
 #include <exception>
 #include <fstream>
 #include <iomanip>
 #include <mutex>
+#include <optional>
 #include <sstream>
 
 #include "bench/arrangement.hpp"
 #include "bench/campaign_output.hpp"
 #include "bench/config_errors.hpp"
 #include "bench/coupled_specimen.hpp"
+#include "bench/driven_mode.hpp"
 #include "bench/frequency_grid.hpp"
 #include "bench/linear_estimate.hpp"
 #include "bench/specimen_plant.hpp"
@@ -26,6 +29,7 @@
 #include "control/controller.hpp"
 #include "core/units.hpp"
 #include "dem/setup.hpp"
+#include "structure/frf.hpp"
 
 namespace sb::bench {
 namespace {
@@ -204,6 +208,19 @@ std::string format_duration(double seconds) {
     return out.str();
 }
 
+/// A point starts: says which, so a long point is not mistaken for a hang.
+void report_start(Shared& shared, const Sweep& sweep, int index, double frequency_hz) {
+    if (shared.options->progress == nullptr) {
+        return;
+    }
+    std::lock_guard<std::mutex> lock(shared.progress_mutex);
+    auto& out = *shared.options->progress;
+    out << "  start " << sweep.prepared->arrangement.name << ' ' << number_text(sweep.level_g)
+        << " g " << std::fixed << std::setprecision(3) << frequency_hz << " Hz (frequency "
+        << index + 1 << " of " << sweep.prepared->frequencies_hz.size() << ")\n"
+        << std::defaultfloat << std::flush;
+}
+
 void report_progress(Shared& shared, const Sweep& sweep, double frequency_hz,
                      const control::PointResult& result) {
     const int done = ++shared.points_done;
@@ -250,17 +267,18 @@ SweepCheckpoint run_sweep(const Sweep& sweep, Shared& shared, std::vector<std::s
     const PreparedArrangement& prepared = *sweep.prepared;
     const fs::path out_dir = shared.options->out_dir;
     const fs::path checkpoint_file = out_dir / "checkpoints" / (sweep.key + ".txt");
-    const Eigen::Matrix3d rotation = mounting_rotation(prepared.arrangement);
     const Eigen::Vector3d gravity = arrangement_gravity(prepared.arrangement);
 
     std::vector<MountedDamper> dampers;
     double dt_max = 1.0 / (256.0 * prepared.frequencies_hz.front());
     for (DamperSpec damper : campaign.dampers) {
+        const DamperMounting mounting = damper_mounting(prepared.arrangement, damper);
+        const Eigen::Matrix3d& rotation = mounting.rotation;
         MountedDamper mounted;
         mounted.name = damper.name;
         mounted.point = damper.point;
         mounted.mount_rotation = rotation;
-        mounted.offset_m = rotation * damper.mount_offset_m;
+        mounted.offset_m = mounting.origin_m;
         if (damper.model == DamperSpec::Model::dem) {
             std::string stiffness_log;
             dt_max = std::min(dt_max, choose_stiffness(damper, sweep.level_g,
@@ -272,6 +290,9 @@ SweepCheckpoint run_sweep(const Sweep& sweep, Shared& shared, std::vector<std::s
             dem::SolverOptions options = damper.solver;
             options.gravity_m_s2 = gravity;
             options.track_energy = false;  // the campaign measures damping from the FRF
+            if (damper.locked) {
+                options.lock.fraction = 1.0;  // never released: release_time_s stays 0
+            }
             dem::EnclosureState rest;
             rest.position_m = prepared.model.point(damper.point).position_m + mounted.offset_m;
             rest.rotation = rotation;
@@ -298,6 +319,11 @@ SweepCheckpoint run_sweep(const Sweep& sweep, Shared& shared, std::vector<std::s
                                               prepared.structure.excitation, campaign.control_point,
                                               f);
     };
+
+    const Eigen::Vector3d direction = prepared.structure.excitation.direction.normalized();
+    const DrivenMode driven_mode(prepared.estimate_model, prepared.estimate_basis,
+                                 prepared.structure.excitation, campaign.control_point,
+                                 prepared.first_mode_hz);
 
     SweepCheckpoint checkpoint;
     if (fs::exists(checkpoint_file)) {
@@ -326,14 +352,31 @@ SweepCheckpoint run_sweep(const Sweep& sweep, Shared& shared, std::vector<std::s
         const double f = frequencies[static_cast<std::size_t>(i)];
         specimen.set_frequency(f);
         specimen.restore(checkpoint.state);
-        // Warm start: the previous amplitude scaled by the linear model's expected ratio.
-        const double start =
-            i == 0 ? checkpoint.next_amplitude
-                   : checkpoint.next_amplitude *
-                         linear_gain(frequencies[static_cast<std::size_t>(i - 1)]) / linear_gain(f);
-        if (campaign.start_points_linear) {
-            specimen.start_from_linear_steady_state(start, 0.0);
+        // Warm start: the previous amplitude scaled by the gain ratio the previous point's
+        // equivalent mode predicts (the linear model's ratio when there is none).
+        double start = checkpoint.next_amplitude;
+        std::optional<std::complex<double>> predicted;
+        if (i > 0) {
+            const double previous_f = frequencies[static_cast<std::size_t>(i - 1)];
+            start *= linear_gain(previous_f) / linear_gain(f);
+            const auto& previous = checkpoint.rows.back();
+            const std::complex<double> measured =
+                previous.values[1].amplitude / previous.values[0].amplitude;
+            predicted = driven_mode.predict(measured, previous_f, f);
+            if (predicted) {
+                start = checkpoint.next_amplitude * std::abs(measured) / std::abs(*predicted);
+            }
+            using Start = CampaignSpec::PointStart;
+            if (campaign.point_start == Start::linear_steady_state) {
+                specimen.start_from_linear_steady_state(start, 0.0);
+            } else if (campaign.point_start == Start::equivalent_steady_state && predicted) {
+                const auto linear = structure::modal_accelerance(
+                    prepared.estimate_model, prepared.estimate_basis, campaign.control_point,
+                    direction, prepared.structure.excitation.point, direction, f);
+                specimen.start_from_linear_steady_state(start, 0.0, *predicted / linear);
+            }
         }
+        report_start(shared, sweep, i, f);
         control::AmplitudeController controller(controller_options);
         controller.set_start_amplitude(start);
         plant.begin_point();
@@ -379,17 +422,25 @@ structure::StructureSpec arrangement_structure(const CampaignConfig& config,
                                                bool all_particles_rigid) {
     structure::StructureSpec spec = config.structure;
     spec.gravity_m_s2 = arrangement_gravity(arrangement);
-    const Eigen::Matrix3d rotation = mounting_rotation(arrangement);
     for (const auto& d : config.campaign.dampers) {
+        const DamperMounting mounting = damper_mounting(arrangement, d);
+        if (!d.enclosure_mass.empty()) {
+            // The enclosure's mass turns and moves with the DEM enclosure.
+            for (auto& m : spec.beam.masses) {
+                if (m.name == d.enclosure_mass &&
+                    m.x_m == point_position_m(config.structure, d.point)) {
+                    m = mounted_enclosure_mass(m, d, mounting);
+                }
+            }
+        }
         if (arrangement.block_mass_kg > 0.0) {
             add_mass(spec, d.point, d.name + " block", arrangement.block_mass_kg,
-                     Eigen::Vector3d::Zero());
+                     mounting.block_cg_m);
         }
         if (all_particles_rigid || d.model == DamperSpec::Model::rigid) {
             const double mass = particle_mass_kg(d, config.campaign.seed);
             const Eigen::Vector3d centre =
-                rotation *
-                (d.mount_offset_m + Eigen::Vector3d(0.0, 0.0, 0.5 * bed_depth_m(d, mass)));
+                mounting.from_enclosure(Eigen::Vector3d(0.0, 0.0, 0.5 * bed_depth_m(d, mass)));
             add_mass(spec, d.point, d.name + " particles (rigid)", mass, centre);
         }
     }
@@ -442,7 +493,12 @@ CampaignSummary run_campaign(const CampaignConfig& config, const CampaignRunOpti
     std::vector<std::exception_ptr> errors(sweeps.size());
     const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
     // Sweeps are independent: each owns its specimen and checkpoint, so the numbers are the
-    // same whatever the thread count. No exception leaves the parallel region.
+    // same whatever the thread count. Eigen would split large products over OpenMP threads
+    // when a sweep runs alone (one thread in the region) and not when it shares the region,
+    // changing their blocking and so their rounding: it runs single-threaded here. No
+    // exception leaves the parallel region.
+    const int eigen_threads = Eigen::nbThreads();
+    Eigen::setNbThreads(1);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
     for (std::size_t i = 0; i < sweeps.size(); ++i) {
         try {
@@ -451,6 +507,7 @@ CampaignSummary run_campaign(const CampaignConfig& config, const CampaignRunOpti
             errors[i] = std::current_exception();
         }
     }
+    Eigen::setNbThreads(eigen_threads);
     for (const auto& e : errors) {
         if (e) std::rethrow_exception(e);
     }
@@ -471,6 +528,7 @@ CampaignSummary run_campaign(const CampaignConfig& config, const CampaignRunOpti
         SweepRecord record;
         record.key = sweeps[i].key;
         record.first_mode_hz = sweeps[i].prepared->first_mode_hz;
+        record.frequencies_hz = sweeps[i].prepared->frequencies_hz;
         record.log = logs[i];
         record.rows = results[i].rows;
         record.control_log = results[i].control_log;

@@ -33,6 +33,19 @@ std::vector<std::string> point_names(const structure::StructureSpec& spec) {
     return names;
 }
 
+/// True when a beam structure has a lumped mass named `mass` at the position of `point`.
+bool has_lumped_mass(const structure::StructureSpec& spec, const std::string& mass,
+                     const std::string& point) {
+    if (spec.kind != structure::StructureSpec::Kind::beam) return false;
+    for (const auto& p : spec.beam.points) {
+        if (p.name != point) continue;
+        for (const auto& m : spec.beam.masses) {
+            if (m.name == mass && m.x_m == p.x_m) return true;
+        }
+    }
+    return false;
+}
+
 /// Every point the campaign refers to must exist in the structure.
 void check_points(const CampaignConfig& config, Section& campaign, Section& root) {
     const auto names = point_names(config.structure);
@@ -56,6 +69,13 @@ void check_points(const CampaignConfig& config, Section& campaign, Section& root
             Section damper = dampers.table(d.name, "a damper");
             damper.error("point", "\"" + d.point + "\"", "must name a point of the structure",
                          "where the damper is attached");
+        }
+        if (!d.enclosure_mass.empty() &&
+            !has_lumped_mass(config.structure, d.enclosure_mass, d.point)) {
+            Section damper = dampers.table(d.name, "a damper");
+            damper.error("enclosure_mass", "\"" + d.enclosure_mass + "\"",
+                         "must name a [[structure.beam.masses]] entry at point \"" + d.point + "\"",
+                         "the structure mass that is this damper's enclosure");
         }
     }
 }

@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 
+#include "bench/resolved_config.hpp"
 #include "bench/sweep_checkpoint.hpp"
 #include "identification/damping_curve.hpp"
 #include "identification/plots.hpp"
@@ -79,6 +80,12 @@ void write_provenance(const CampaignOutput& output) {
         char f1[64];
         std::snprintf(f1, sizeof f1, "%.9g", sweep.first_mode_hz);
         text << "first_mode_hz = " << f1 << '\n';
+        text << "frequencies_hz = [";
+        for (std::size_t i = 0; i < sweep.frequencies_hz.size(); ++i) {
+            std::snprintf(f1, sizeof f1, "%.9g", sweep.frequencies_hz[i]);
+            text << (i ? ", " : "") << f1;
+        }
+        text << "]\n";
         text << "settings = [";
         for (std::size_t i = 0; i < sweep.log.size(); ++i) {
             text << (i ? ", " : "") << toml_string(sweep.log[i]);
@@ -148,6 +155,8 @@ void write_campaign_output(const CampaignOutput& output) {
     }
     write_control_log(output);
     write_file_atomically(out_dir / "config.toml", output.options->config_text);
+    write_file_atomically(out_dir / "config.resolved.toml",
+                          resolved_config_toml(*output.config, output.options->config_text));
     write_provenance(output);
     if (output.config->campaign.output.plots) {
         const auto plots = id::write_plots(out_dir, levels);

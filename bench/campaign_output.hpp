@@ -19,7 +19,8 @@ namespace sb::bench {
 struct SweepRecord {
     std::string key;
     double first_mode_hz = 0.0;
-    std::vector<std::string> log;  ///< derived settings (stiffness, time step)
+    std::vector<double> frequencies_hz;  ///< the sweep's grid, in the order stepped
+    std::vector<std::string> log;        ///< derived settings (stiffness, time step)
     std::vector<identification::PointRow> rows;
     std::vector<std::string> control_log;  ///< control.csv rows
 };

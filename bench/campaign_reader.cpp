@@ -53,7 +53,20 @@ std::vector<ArrangementSpec> read_arrangements(Section s) {
             a.number("damper_angle_deg", 0.0, "angle between damper axis and motion [deg]");
         spec.block_mass_kg =
             a.number("block_mass_kg", 0.0, "mounting block mass at each damper [kg]");
+        spec.block_cathetus_m =
+            a.number("block_cathetus_m", 0.0, "cathetus of the 45-degree mounting wedge [m]");
+        spec.mount_lift_m = a.vector3("mount_lift_m", spec.mount_lift_m,
+                                      "further displacement of the mounting face [m]");
         Violations v;
+        require_non_negative(v, "block_cathetus_m", spec.block_cathetus_m,
+                             "cathetus of the 45-degree mounting wedge [m]");
+        if (spec.block_cathetus_m > 0.0 && std::abs(spec.damper_angle_deg - 45.0) > 1e-9) {
+            v.push_back({"block_cathetus_m", format_value(spec.block_cathetus_m),
+                         "a right isosceles wedge tilts the damper by 45 deg: damper_angle_deg "
+                         "must be 45, not " +
+                             format_value(spec.damper_angle_deg),
+                         "cathetus of the 45-degree mounting wedge [m]"});
+        }
         require_in_range(v, "damper_angle_deg", spec.damper_angle_deg, 0.0, 90.0,
                          "angle between damper axis and motion [deg]");
         require_non_negative(v, "block_mass_kg", spec.block_mass_kg, "mounting block [kg]");
@@ -86,6 +99,8 @@ control::ControllerOptions read_controller(Section s) {
     c.limit_cycle_periods = s.integer("limit_cycle_periods", c.limit_cycle_periods,
                                       "alternating periods of a limit cycle");
     c.max_restarts = s.integer("max_restarts", c.max_restarts, "secant restarts");
+    c.drift_horizon_periods = s.integer("drift_horizon_periods", c.drift_horizon_periods,
+                                        "periods a drift in the window is extrapolated over");
     s.finish();
     control::ControllerOptions checked = c;
     if (checked.initial_amplitude == 0.0) {
@@ -129,10 +144,15 @@ CampaignSpec read_campaign(Section& root, Section& campaign) {
                        "seed of the particle filling");
     }
     spec.seed = static_cast<std::uint64_t>(std::max(0, seed));
-    spec.start_points_linear =
-        campaign.choice("point_start", "linear-steady-state",
-                        {"linear-steady-state", "previous-state"},
-                        "how the structure starts each point") == "linear-steady-state";
+    const std::string point_start =
+        campaign.choice("point_start", "previous-state",
+                        {"previous-state", "linear-steady-state", "equivalent-steady-state"},
+                        "how the structure starts each point after the first");
+    spec.point_start = point_start == "linear-steady-state"
+                           ? CampaignSpec::PointStart::linear_steady_state
+                       : point_start == "equivalent-steady-state"
+                           ? CampaignSpec::PointStart::equivalent_steady_state
+                           : CampaignSpec::PointStart::previous_state;
     spec.response_points =
         campaign.strings("response_points", "named points recorded besides the control point");
     const std::vector<std::string> wanted =

@@ -19,6 +19,12 @@ struct ArrangementSpec {
     Oscillation oscillation = Oscillation::horizontal;
     double damper_angle_deg = 0.0;  ///< angle between the damper axis and the motion [deg]
     double block_mass_kg = 0.0;     ///< mounting block added at each damper point [kg]
+    /// Cathetus of the mounting block, a right isosceles wedge lying on one cathetus with the
+    /// enclosure on its hypotenuse (paper 000 Table 1: 20 mm at 45 deg); 0: no wedge [m].
+    double block_cathetus_m = 0.0;
+    /// Further displacement of the enclosure's mounting face (a spacer, a side mount),
+    /// structure frame [m].
+    Eigen::Vector3d mount_lift_m{0.0, 0.0, 0.0};
 };
 
 /// The frequency grid of every sweep: given, or built around the first mode.
@@ -41,6 +47,15 @@ struct DamperSpec {
     /// Enclosure frame origin (inner bottom centre) relative to the point, structure frame,
     /// before the arrangement's tilt [m].
     Eigen::Vector3d mount_offset_m{0.0, 0.0, 0.0};
+    /// Thickness of the enclosure's bottom plate: the enclosure stands, and turns, on its
+    /// outer bottom face, this far below the origin along the axis [m].
+    double bottom_thickness_m = 0.0;
+    /// Name of the structure's lumped mass that is this damper's enclosure: moved and turned
+    /// with the mounting of every arrangement; empty: none.
+    std::string enclosure_mass;
+    /// Particles locked to the enclosure (a rigid bed moved through the coupling loop; a
+    /// check of the loop against the linear model).
+    bool locked = false;
     /// dem: particles simulated; rigid: particles replaced by an equal rigid mass.
     Model model = Model::dem;
     dem::SolverOptions solver;  ///< particles, enclosure, contact law (gravity set per arrangement)
@@ -69,12 +84,17 @@ struct CampaignSpec {
     control::ControllerOptions controller;
     OutputSpec output;
     std::uint64_t seed = 1;  ///< particle filling
-    /// Every point starts the structure from its linear steady state at the new frequency
-    /// and start amplitude (particles keep their state); false: from the previous point's
-    /// state. A lightly damped beam (0.5 %) needs about 1/(zeta 2 pi) = 30 periods per e-fold
-    /// to forget a frequency step: the linear start spares those, and is exact for a linear
-    /// specimen.
-    bool start_points_linear = true;
+    /// How the structure starts every point after the first of a sweep (the first always
+    /// starts from the linear steady state, the particles from their settled bed; later
+    /// points keep the particles' state):
+    /// - previous_state (default, design.md): where the previous point left it;
+    /// - linear_steady_state: the linear steady state at the new frequency and start
+    ///   amplitude, exact for a linear specimen but, with 0.5 % damping, far from a
+    ///   particle-damped beam's response near resonance;
+    /// - equivalent_steady_state: that state scaled in amplitude and phase to the response
+    ///   the previous point's equivalent driven mode predicts (bench/driven_mode.hpp).
+    enum class PointStart { previous_state, linear_steady_state, equivalent_steady_state };
+    PointStart point_start = PointStart::previous_state;
 };
 
 }  // namespace sb::bench

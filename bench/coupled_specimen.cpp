@@ -149,7 +149,8 @@ void CoupledSpecimen::set_point_loads() {
     }
 }
 
-void CoupledSpecimen::start_from_linear_steady_state(double amplitude, double time_s) {
+void CoupledSpecimen::start_from_linear_steady_state(double amplitude, double time_s,
+                                                     std::complex<double> response_ratio) {
     if (!structure_) {
         throw std::logic_error("coupled specimen: set_frequency before starting");
     }
@@ -174,8 +175,18 @@ void CoupledSpecimen::start_from_linear_steady_state(double amplitude, double ti
     const int start_modes = start.modes();
     const Eigen::MatrixXd projection = basis_->shapes.leftCols(structure_->modes()).transpose() *
                                        model_->mass() * start_basis_->shapes.leftCols(start_modes);
-    const Eigen::VectorXd q_linear = projection * start.q();
-    const Eigen::VectorXd q_dot_linear = projection * start.q_dot();
+    Eigen::VectorXd q_linear = projection * start.q();
+    Eigen::VectorXd q_dot_linear = projection * start.q_dot();
+    if (response_ratio != 1.0) {
+        // q(t) = Re{Q e^{iw(t - t0)}}: Q = q - i q_dot / w at t0; the state of c Q.
+        const double w = hz_to_rad_s(frequency_hz_);
+        const Eigen::VectorXcd phasor =
+            (q_linear.cast<std::complex<double>>() -
+             std::complex<double>(0.0, 1.0 / w) * q_dot_linear.cast<std::complex<double>>()) *
+            response_ratio;
+        q_linear = phasor.real();
+        q_dot_linear = -w * phasor.imag();
+    }
     // Static deflection under the particles' weight at rest on the walls, so that the weight
     // does not start a transient: q_s = phi^T f_w / omega^2.
     Eigen::VectorXd q = q_linear;
@@ -185,17 +196,18 @@ void CoupledSpecimen::start_from_linear_steady_state(double amplitude, double ti
         if (!d.solver) {
             continue;
         }
+        // The bed's centre of gravity from its enclosure-frame positions and the mounting
+        // (not from the solver's world positions, which sit wherever its last pose was).
         double mass_kg = 0.0;
         Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
         const auto& state = d.solver->particles();
         for (std::size_t k = 0; k < state.size(); ++k) {
             const double m = 1.0 / state.inv_mass[k];
             mass_kg += m;
-            first_moment += m * state.x[k];
+            first_moment += m * local[i].positions_m[k];
         }
         const Eigen::Vector3d weight = mass_kg * d.solver->options().gravity_m_s2;
-        const Eigen::Vector3d cg = first_moment / mass_kg;
-        const Eigen::Vector3d arm = cg - model_->point(d.point).position_m;
+        const Eigen::Vector3d arm = d.offset_m + d.mount_rotation * (first_moment / mass_kg);
         const Eigen::VectorXd f = model_->point_load(d.point, weight, arm.cross(weight));
         for (int m = 0; m < modes; ++m) {
             const double w = basis_->modes[static_cast<std::size_t>(m)].frequency_hz * kTwoPi;

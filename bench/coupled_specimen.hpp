@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <complex>
 #include <memory>
 #include <string>
 #include <vector>
@@ -69,7 +70,11 @@ class CoupledSpecimen {
     /// Linear steady state at amplitude A [N, or m/s^2 for base excitation] at the current
     /// frequency (of the start model, projected on the specimen's modes), plus the static
     /// deflection under the particles' weight: a sweep starts with no slow start-up transient.
-    void start_from_linear_steady_state(double amplitude, double time_s);
+    /// `response_ratio` scales the harmonic state as a phasor, Q -> c Q (q = Re Q,
+    /// q_dot = -w Im Q at phase 0): the steady state of a response c times the start
+    /// model's, in amplitude and phase (an equivalent mode identified from measured points).
+    void start_from_linear_steady_state(double amplitude, double time_s,
+                                        std::complex<double> response_ratio = 1.0);
 
     /// One coupled step at excitation amplitude A; writes the channel values at the end of
     /// the step into `values` (size = channel_names().size()).

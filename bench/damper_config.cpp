@@ -131,6 +131,12 @@ std::vector<DamperSpec> read_dampers(Section dampers) {
         d.point = s.required_string("point", "named point the damper is attached to");
         d.mount_offset_m = s.vector3("mount_offset_m", d.mount_offset_m,
                                      "enclosure origin (inner bottom centre) from the point [m]");
+        d.bottom_thickness_m =
+            s.number("bottom_thickness_m", d.bottom_thickness_m,
+                     "enclosure bottom plate: its outer face stands on the mounting [m]");
+        d.enclosure_mass = s.string("enclosure_mass", "",
+                                    "structure mass that is this enclosure (turned with it)");
+        d.locked = s.boolean("locked", false, "particles locked to the enclosure");
         const std::string model = s.choice("model", "dem", {"dem", "rigid"},
                                            "dem: simulated particles; rigid: equal rigid mass");
         d.model = model == "rigid" ? DamperSpec::Model::rigid : DamperSpec::Model::dem;
@@ -159,6 +165,8 @@ std::vector<DamperSpec> read_dampers(Section dampers) {
             v.push_back(std::move(violation));
         }
         append_prefixed(v, "settle", d.settle.validate());
+        require_non_negative(v, "bottom_thickness_m", d.bottom_thickness_m,
+                             "enclosure bottom plate [m]");
         require_in_range(v, "contact.max_overlap_fraction", d.max_overlap_fraction, 1e-6, 0.2,
                          "automatic stiffness: largest overlap / diameter [-]");
         require_in_range(v, "contact.time_step_fraction", d.time_step_fraction, 1e-3, 0.5,

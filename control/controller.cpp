@@ -211,7 +211,11 @@ PointResult AmplitudeController::run_point(Plant& plant, double frequency_hz, do
 
         const bool measured =
             decision.kind == DecisionKind::kSettled || decision.kind == DecisionKind::kLimitCycle2;
-        if (measured && std::abs(verdict.level - target_rms) <= o.tolerance * target_rms) {
+        // Both the window's mean (what is recorded) and the steady value it approaches (what
+        // the structure does at this amplitude) must be on target.
+        const double band = o.tolerance * target_rms;
+        if (measured && std::abs(verdict.level - target_rms) <= band &&
+            std::abs(verdict.mean - target_rms) <= band) {
             // Accepted, with or without an update at this point (a warm start already on
             // target costs no extra settling cycle).
             decision.rule = UpdateRule::kNone;
@@ -220,7 +224,7 @@ PointResult AmplitudeController::run_point(Plant& plant, double frequency_hz, do
             result.status = decision.kind == DecisionKind::kSettled ? PointStatus::kConverged
                                                                     : PointStatus::kLimitCycle2;
             result.amplitude_final = amplitude;
-            result.rms_final = verdict.level;
+            result.rms_final = verdict.mean;
             result.window_end = result.periods_simulated;
             result.window_begin = result.window_end - verdict.count;
             accepted = true;
@@ -240,7 +244,10 @@ PointResult AmplitudeController::run_point(Plant& plant, double frequency_hz, do
         // The ratio rule stalls when the gain changes with the drive (a hardening response
         // grows less than the drive): two measured levels on the same side, the newer one not
         // even halfway closer (in log) than the older. Then follow the measured gradient.
-        if (!proposed && measured && last_measured && last_rule == UpdateRule::kRatio &&
+        // A level extrapolated from a geometric decay estimates the steady state as well as
+        // a settled one does, and serves the gradient alike.
+        const bool steady_estimate = measured || verdict.extrapolated;
+        if (!proposed && steady_estimate && last_measured && last_rule == UpdateRule::kRatio &&
             (last_measured->level < target_rms) == (sample.level < target_rms) &&
             std::abs(std::log(target_rms / sample.level)) >
                 0.5 * std::abs(std::log(target_rms / last_measured->level))) {
@@ -248,7 +255,7 @@ PointResult AmplitudeController::run_point(Plant& plant, double frequency_hz, do
             if (proposed) decision.rule = UpdateRule::kGradient;
         }
         if (!proposed) proposed = ratio_amplitude(amplitude, verdict.level, target_rms);
-        if (measured) last_measured = sample;
+        if (steady_estimate) last_measured = sample;
         last_rule = decision.rule;
         decision.next_amplitude = limit_step(amplitude, *proposed, o);
         result.decisions.push_back(decision);

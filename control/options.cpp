@@ -72,6 +72,8 @@ Violations ControllerOptions::validate() const {
     }
     require_at_least(out, "max_restarts", max_restarts, 0,
                      "bracket restarts before the ratio rule alone is used");
+    require_at_least(out, "drift_horizon_periods", drift_horizon_periods, 0,
+                     "periods a drift in the window is extrapolated over");
     return out;
 }
 

@@ -45,6 +45,12 @@ struct ControllerOptions {
     int limit_cycle_periods = 6;
     /// Bracket restarts (secant stalls) after which only the ratio rule is used [-].
     int max_restarts = 5;
+    /// Periods over which a monotone drift in the window is assumed to go on at most: a
+    /// window within the tolerance is settled only if its drift, extrapolated as a geometric
+    /// decay (or linearly when it does not decay) over at most this many periods, stays
+    /// within half the tolerance. The default is the e-folding time 1/(2 pi zeta) of a
+    /// 0.5 %-damped mode at resonance, paper 000's empty beam; 0: no drift test [periods].
+    int drift_horizon_periods = 32;
 
     /// Every violated constraint, keys as above.
     [[nodiscard]] Violations validate() const;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <numeric>
 
 namespace sb::control {
@@ -38,7 +39,49 @@ bool drifts(std::span<const double> v, bool rising) {
     return newest < std::min(inner_lo, oldest) && oldest > std::max(inner_hi, newest);
 }
 
+/// Largest share of the tolerance a settled window may still be drifting by: then a level
+/// accepted within the tolerance has its steady state within 1.5 tolerances at worst, and
+/// within one for a geometric approach, whose steady value is the level acted on.
+constexpr double kSettledDriftShare = 0.5;
+
+/// Successive ratios of a decaying transient agree; scatter gives ratios all over the place.
+/// Two ratios further apart than this factor are not one geometric decay [-].
+constexpr double kRatioSpread = 2.0;
+
 }  // namespace
+
+Drift assess_drift(std::span<const double> v, int horizon_periods) {
+    Drift drift;
+    if (horizon_periods <= 0 || v.size() < 3) return drift;
+    double sign = 0.0;
+    double num = 0.0;
+    double den = 0.0;
+    double lo_ratio = std::numeric_limits<double>::infinity();
+    double hi_ratio = 0.0;
+    for (std::size_t i = 1; i < v.size(); ++i) {
+        const double d = v[i] - v[i - 1];
+        const double s = d > 0.0 ? 1.0 : (d < 0.0 ? -1.0 : 0.0);
+        if (s == 0.0 || (sign != 0.0 && s != sign)) return drift;  // not monotone
+        sign = s;
+        if (i >= 2) {
+            const double previous = v[i - 1] - v[i - 2];
+            num += d * previous;
+            den += previous * previous;
+            lo_ratio = std::min(lo_ratio, d / previous);
+            hi_ratio = std::max(hi_ratio, d / previous);
+        }
+    }
+    drift.monotone = true;
+    drift.ratio = num / den;
+    const double last = v[v.size() - 1] - v[v.size() - 2];
+    const double horizon = static_cast<double>(horizon_periods);
+    const double factor = drift.ratio < 1.0 ? drift.ratio / (1.0 - drift.ratio) : horizon;
+    // Three values always fit one ratio; a decay is only believed when two ratios agree.
+    drift.decaying = v.size() >= 4 && drift.ratio < 1.0 && factor <= horizon &&
+                     hi_ratio <= kRatioSpread * lo_ratio;
+    drift.remaining = last * std::min(factor, horizon);
+    return drift;
+}
 
 WindowVerdict assess_window(std::span<const double> values, double target_rms,
                             const ControllerOptions& options) {
@@ -48,9 +91,19 @@ WindowVerdict assess_window(std::span<const double> values, double target_rms,
     const auto w = values.subspan(values.size() - m, m);  // newest m values, oldest first
 
     // Settled: the whole window within the tolerance (paper 000: "does not vary
-    // significantly for a certain number of periods").
+    // significantly for a certain number of periods"), and not a transient still on its way:
+    // a lightly damped mode approaches its steady state by a few percent per period, which
+    // fits inside the spread long before it has arrived.
+    const Drift drift = assess_drift(w, options.drift_horizon_periods);
     if (m == n && within(w, 0, 1, tol)) {
-        return {WindowState::kSettled, mean(w), static_cast<int>(m)};
+        const double level = mean(w);
+        if (!drift.monotone) {
+            return {WindowState::kSettled, level, static_cast<int>(m), level};
+        }
+        if (std::abs(drift.remaining) <= kSettledDriftShare * tol * level) {
+            const double steady = drift.decaying ? w.back() + drift.remaining : level;
+            return {WindowState::kSettled, steady, static_cast<int>(m), level, drift.decaying};
+        }
     }
     // Two-period limit cycle: consecutive values clearly apart and every other value within
     // the tolerance over limit_cycle_periods values (HFelem's alternation test, with more
@@ -63,7 +116,7 @@ WindowVerdict assess_window(std::span<const double> values, double target_rms,
         const double jump = std::abs(a - b) / std::max(a, b);
         if (jump >= options.limit_cycle_jump * tol && within(c, 0, 2, tol) &&
             within(c, 1, 2, tol)) {
-            return {WindowState::kLimitCycle2, mean(c), static_cast<int>(l)};
+            return {WindowState::kLimitCycle2, mean(c), static_cast<int>(l), mean(c)};
         }
     }
 
@@ -71,20 +124,35 @@ WindowVerdict assess_window(std::span<const double> values, double target_rms,
         // Early decision: every value beyond the target by more than the tolerance, unless
         // the window is still drifting toward the target (then it may yet get there). The
         // level acted on is the value nearest the target, so the update cannot overshoot.
+        // A drift that is the geometric decay of a transient tells where it is going: if
+        // that too is beyond the target, decide on it (a 0.5 %-damped mode would otherwise
+        // hold every decision for a hundred periods).
         const bool low =
             std::all_of(w.begin(), w.end(), [&](double v) { return (1.0 + tol) * v < target_rms; });
         const bool high =
             std::all_of(w.begin(), w.end(), [&](double v) { return (1.0 - tol) * v > target_rms; });
-        if (low && !drifts(w, true)) {
-            return {WindowState::kEarlyLow, *std::max_element(w.begin(), w.end()),
-                    static_cast<int>(m)};
+        const double heading = w.back() + drift.remaining;
+        const int count = static_cast<int>(m);
+        if (low) {
+            if (!drifts(w, true)) {
+                return {WindowState::kEarlyLow, *std::max_element(w.begin(), w.end()), count,
+                        mean(w)};
+            }
+            if (drift.decaying && (1.0 + tol) * heading < target_rms) {
+                return {WindowState::kEarlyLow, heading, count, mean(w), true};
+            }
         }
-        if (high && !drifts(w, false)) {
-            return {WindowState::kEarlyHigh, *std::min_element(w.begin(), w.end()),
-                    static_cast<int>(m)};
+        if (high) {
+            if (!drifts(w, false)) {
+                return {WindowState::kEarlyHigh, *std::min_element(w.begin(), w.end()), count,
+                        mean(w)};
+            }
+            if (drift.decaying && (1.0 - tol) * heading > target_rms) {
+                return {WindowState::kEarlyHigh, heading, count, mean(w), true};
+            }
         }
     }
-    return {m == n ? WindowState::kUnsettled : WindowState::kFilling, 0.0, 0};
+    return {m == n ? WindowState::kUnsettled : WindowState::kFilling, 0.0, 0, 0.0};
 }
 
 }  // namespace sb::control

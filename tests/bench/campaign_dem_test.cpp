@@ -14,26 +14,41 @@ using test::paper000_h0_with;
 /// Paper 000's H-0 sweep with simulated particles at 1, 2 and 3 g: every point ends converged
 /// or flagged, and the particles damp the first mode well above the empty beam's 0.5 %.
 TEST(Campaign, ARealH0CampaignDampsWellAboveTheEmptyBeam) {
+    // The shipped grid and budget: with seven frequencies the steps near resonance are small
+    // enough for the warm start, and fewer points run out of budget than with six (whose
+    // `closest` points cost more periods than the seventh frequency).
     const std::string text = paper000_h0_with({
-        {"count = 7", "count = 6"},
         // Softer contacts (5 % overlap at the largest impact speed) double the time step;
         // the damping of a fluidised bed barely depends on it.
         {"max_overlap_fraction", "max_overlap_fraction = 0.05"},
-        {"max_periods", "max_periods = 30"},
     });
     const auto config = load_campaign_config_text(text, "real.toml");
     CampaignRunOptions options;
     options.out_dir = fresh_dir("real");
     options.config_text = text;
+    options.threads = 2;
     const auto summary = run_campaign(config, options);
-    EXPECT_EQ(summary.points, 18);
-    EXPECT_EQ(summary.converged + summary.limit_cycle + summary.closest, 18);
+    EXPECT_EQ(summary.points, 21);
+    EXPECT_EQ(summary.converged + summary.limit_cycle + summary.closest, 21);
+    // Near resonance at 2-3 g the bed's response takes 15-20 periods to follow an amplitude
+    // change, so a few points spend their 40-period budget (5 of 21 observed); a controller
+    // or coupling that failed would leave most of them there.
+    constexpr int kMostClosest = 6;
+    EXPECT_LE(summary.closest, kMostClosest);
 
     const auto recording = identification::read_recording(options.out_dir);
+    ASSERT_EQ(recording.points.size(), 21u);
+    const auto acc = recording.channel_index("acc_damper");
+    const double tolerance = config.campaign.controller.tolerance;
+    // The recorded RMS is over the whole window, the controller's level the mean of the
+    // periods' RMS values; for values within the tolerance of each other the two differ by
+    // less than a tenth of a percent.
+    constexpr double kWindowRmsOverMeanRms = 1e-3;
     for (const auto& row : recording.points) {
-        EXPECT_TRUE(row.status == "converged" || row.status == "limit-cycle-2" ||
-                    row.status == "closest")
-            << row.status;
+        if (row.status == "closest") continue;
+        const double target = 9.80665 * row.level_g;
+        EXPECT_NEAR(row.values[acc].rms / target, 1.0, tolerance + kWindowRmsOverMeanRms)
+            << row.status << " at " << row.level_g << " g, " << row.frequency_hz << " Hz";
     }
     // "Well above": at least twice the empty beam's 0.5 % at 2 and 3 g, by every method that
     // resolved the band (and at least one did at each level).

@@ -2,13 +2,17 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <Eigen/Core>
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "bench/sweep_checkpoint.hpp"
+#include "structure/spec.hpp"
 
 namespace sb::bench::test {
 
@@ -24,10 +28,65 @@ inline std::string paper000_h0_with(const std::vector<std::pair<std::string, std
     return text;
 }
 
+/// An empty directory for one test of this process: the process id keeps concurrent runs
+/// (other build trees, other users) from resuming each other's checkpoints.
 inline std::filesystem::path fresh_dir(const std::string& name) {
-    const auto dir = std::filesystem::temp_directory_path() / ("shakerbench-campaign-" + name);
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("shakerbench-campaign-" + std::to_string(::getpid()) + "-" + name);
     std::filesystem::remove_all(dir);
     return dir;
+}
+
+/// Adds `bed` (enclosure frame, the enclosure at `origin` turned by `rotation` from the
+/// point) to `spec` as one rigid lumped mass at `point`: mass, centre of gravity and the
+/// inertia of spheres about it (the diagonal about x, y, z).
+inline void add_rigid_bed(structure::StructureSpec& spec, const std::string& point,
+                          const std::string& name, const Eigen::Vector3d& origin,
+                          const Eigen::Matrix3d& rotation,
+                          const std::vector<Eigen::Vector3d>& local,
+                          const std::vector<double>& radii_m, double density_kg_m3) {
+    double mass = 0.0;
+    Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
+    std::vector<double> masses;
+    for (std::size_t i = 0; i < local.size(); ++i) {
+        const double r = radii_m[i];
+        masses.push_back(density_kg_m3 * 4.0 / 3.0 * 3.14159265358979323846 * r * r * r);
+        mass += masses.back();
+        first_moment += masses.back() * (origin + rotation * local[i]);
+    }
+    const Eigen::Vector3d cg = first_moment / mass;
+    Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+    for (std::size_t i = 0; i < local.size(); ++i) {
+        const Eigen::Vector3d d = origin + rotation * local[i] - cg;
+        inertia += masses[i] * ((d.squaredNorm() + 0.4 * radii_m[i] * radii_m[i]) *
+                                    Eigen::Matrix3d::Identity() -
+                                d * d.transpose());
+    }
+    double x_m = 0.0;
+    for (const auto& p : spec.beam.points) {
+        if (p.name == point) x_m = p.x_m;
+    }
+    structure::LumpedMass bed;
+    bed.name = name;
+    bed.x_m = x_m;
+    bed.mass_kg = mass;
+    bed.offset_m = cg;
+    bed.inertia_kg_m2 = inertia.diagonal();
+    spec.beam.masses.push_back(bed);
+}
+
+/// Every regular file under `dir`, relative path -> content.
+inline std::vector<std::pair<std::string, std::string>> files_under(
+    const std::filesystem::path& dir) {
+    std::vector<std::pair<std::string, std::string>> out;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
+        if (entry.is_regular_file()) {
+            out.emplace_back(std::filesystem::relative(entry.path(), dir).string(),
+                             read_file(entry.path()));
+        }
+    }
+    std::sort(out.begin(), out.end());
+    return out;
 }
 
 }  // namespace sb::bench::test

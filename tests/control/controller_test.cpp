@@ -22,13 +22,9 @@ using test::SdofPlant;
 
 constexpr double kG = 9.80665;
 /// The controller's loose acceptance band (the default tolerance): a recorded RMS may sit
-/// anywhere inside it, so tests on rms_final use exactly this, no more.
+/// anywhere inside it, and so may the steady state at the accepted amplitude (the window is
+/// not settled while it still drifts), so tests on both use exactly this, no more.
 constexpr double kTolerance = 0.05;
-/// A settled window of a lagged plant can still trail its steady state by up to about one
-/// tolerance (the window only has to stop moving by that much); the steady state at the
-/// accepted amplitude is therefore checked against twice the tolerance.
-constexpr double kSteadyBand = 2.0 * kTolerance;
-
 /// Paper-000-like single mode: 1 kg, 10 Hz, 5 % damping, controlled at 0.5 g RMS.
 constexpr double kMass = 1.0;
 constexpr double kFn = 10.0;
@@ -83,7 +79,7 @@ TEST(AmplitudeController, LinearSdofConvergesInAtMostThreeUpdates) {
     EXPECT_GE(r.updates, 1);
     EXPECT_LE(relative_error(r.rms_final, kTarget), kTolerance);
     const double exact = kTarget * std::numbers::sqrt2 / plant.accelerance(f);
-    EXPECT_LE(relative_error(r.amplitude_final, exact), kSteadyBand);
+    EXPECT_LE(relative_error(r.amplitude_final, exact), kTolerance);
     EXPECT_EQ(r.amplitudes_tried.front(), 0.3);
     EXPECT_EQ(r.amplitudes_tried.back(), r.amplitude_final);
     EXPECT_EQ(static_cast<int>(r.amplitudes_tried.size()), r.updates + 1);
@@ -106,7 +102,7 @@ TEST(AmplitudeController, HardeningDuffingConvergesToTheTargetLevel) {
 
     EXPECT_EQ(r.status, PointStatus::kConverged);
     EXPECT_LE(relative_error(r.rms_final, 2.0 * kTarget), kTolerance);
-    EXPECT_LE(relative_error(plant.steady_rms(r.amplitude_final, f), 2.0 * kTarget), kSteadyBand);
+    EXPECT_LE(relative_error(plant.steady_rms(r.amplitude_final, f), 2.0 * kTarget), kTolerance);
     // The response grows less than the drive, so the ratio rule alone would creep up; the
     // point must still converge well inside the budget.
     // Log2(20 N / 1 N) > 4 doublings are needed under max_step_factor = 2; the ratio rule
@@ -189,8 +185,8 @@ TEST(AmplitudeController, ChaoticResponseFallsBackToTheClosestAmplitudeAndFlagsI
     expect_consistent_record(r, o);
 }
 
-TEST(AmplitudeController, SlowDriftTowardTheTargetIsNotDecidedEarly) {
-    constexpr double kCreep = 0.005;  // +0.5 % per period
+TEST(AmplitudeController, SlowDriftTowardTheTargetIsNeitherDecidedEarlyNorTakenAsSettled) {
+    constexpr double kCreep = 0.005;  // +0.5 % per period, forever
     constexpr double kGain = 5.0;
     DriftingPlant plant(kGain, kCreep);
     ControllerOptions o;
@@ -198,14 +194,78 @@ TEST(AmplitudeController, SlowDriftTowardTheTargetIsNotDecidedEarly) {
     AmplitudeController controller(o);
     const PointResult r = controller.run_point(plant, 9.5, kTarget);
 
-    ASSERT_FALSE(r.decisions.empty());
     // All values are too low beyond doubt after early_periods, but they drift toward the
-    // target: no early decision; the first decision waits for a full settled window.
-    EXPECT_EQ(r.decisions.front().kind, DecisionKind::kSettled);
-    EXPECT_EQ(r.decisions.front().period, o.transient_periods + o.window_periods - 1);
-    EXPECT_EQ(r.status, PointStatus::kConverged);
-    EXPECT_LE(relative_error(r.rms_final, kTarget), kTolerance);
+    // target: no early decision. A window spreads only 1.5 %, inside the tolerance, but a
+    // response that keeps creeping is not steady: no decision at all, and the point ends
+    // flagged.
+    EXPECT_TRUE(r.decisions.empty());
+    EXPECT_EQ(r.status, PointStatus::kClosest);
+    // Without the drift test the creep passed as settled within the budget.
+    ControllerOptions no_drift = o;
+    no_drift.drift_horizon_periods = 0;
+    DriftingPlant again(kGain, kCreep);
+    const PointResult old = AmplitudeController(no_drift).run_point(again, 9.5, kTarget);
+    ASSERT_FALSE(old.decisions.empty());
+    EXPECT_EQ(old.decisions.front().kind, DecisionKind::kSettled);
+    EXPECT_EQ(old.decisions.front().period, o.transient_periods + o.window_periods - 1);
     expect_consistent_record(r, o);
+}
+
+/// Paper 000's empty beam: 0.5 % damping, so a transient decays by only 3 % per period and a
+/// four-period window of it spreads less than the 5 % tolerance long before it has settled.
+constexpr double kLightDamping = 0.005;
+
+TEST(AmplitudeController, ATransientOfALightlyDampedModeIsNotAcceptedAsSettled) {
+    const double f = 9.5;
+    SdofPlant plant(kMass, kFn, kLightDamping);
+    ControllerOptions o;
+    o.initial_amplitude = 0.3;  // N: less than half of what 0.5 g needs, from rest
+    o.max_periods = 400;        // the transient itself needs more than 100 periods to fade
+    AmplitudeController controller(o);
+    const PointResult r = controller.run_point(plant, f, kTarget);
+
+    ASSERT_EQ(r.status, PointStatus::kConverged);
+    EXPECT_LE(relative_error(r.rms_final, kTarget), kTolerance);
+    // The steady state at the accepted amplitude is on target within the tolerance itself,
+    // not a loosened band.
+    EXPECT_LE(relative_error(plant.steady_rms(r.amplitude_final, f), kTarget), kTolerance);
+    const double exact = kTarget * std::numbers::sqrt2 / plant.accelerance(f);
+    EXPECT_LE(relative_error(r.amplitude_final, exact), kTolerance);
+    // The decaying approach told where it was going: no more updates than for 5 % damping.
+    EXPECT_LE(r.updates, 3);
+    expect_consistent_record(r, o);
+}
+
+TEST(AmplitudeController, WithoutTheDriftTestTheSameTransientWasAcceptedOffTarget) {
+    // The counter-example that makes the test above meaningful: the spread-only window
+    // accepts the transient, and the steady state at that amplitude misses the target by
+    // more than the tolerance.
+    const double f = 9.5;
+    SdofPlant plant(kMass, kFn, kLightDamping);
+    ControllerOptions o;
+    o.initial_amplitude = 0.3;
+    o.max_periods = 400;
+    o.drift_horizon_periods = 0;
+    const PointResult r = AmplitudeController(o).run_point(plant, f, kTarget);
+    ASSERT_EQ(r.status, PointStatus::kConverged);
+    EXPECT_GT(relative_error(plant.steady_rms(r.amplitude_final, f), kTarget), kTolerance);
+}
+
+TEST(AmplitudeController, AWarmStartFromThePreviousStateOfALightlyDampedModeSettlesOnTarget) {
+    // A sweep carries the plant's state from one frequency to the next: the new point starts
+    // with the old steady state, a transient the window must see through.
+    SdofPlant plant(kMass, kFn, kLightDamping);
+    ControllerOptions o;
+    o.initial_amplitude = 0.7;
+    o.max_periods = 400;
+    AmplitudeController controller(o);
+    for (double f : {9.5, 9.7, 9.85}) {
+        const PointResult r = controller.run_point(plant, f, kTarget);
+        ASSERT_EQ(r.status, PointStatus::kConverged) << f << " Hz";
+        EXPECT_LE(relative_error(plant.steady_rms(r.amplitude_final, f), kTarget), kTolerance)
+            << f << " Hz";
+        expect_consistent_record(r, o);
+    }
 }
 
 TEST(AmplitudeController, WarmStartOnTargetIsAcceptedWithoutAnUpdate) {
@@ -216,16 +276,17 @@ TEST(AmplitudeController, WarmStartOnTargetIsAcceptedWithoutAnUpdate) {
     const PointResult first = controller.run_point(plant, 9.5, kTarget);
     ASSERT_EQ(first.status, PointStatus::kConverged);
 
-    // Next level of the same sweep, twice the target: the linear plant needs exactly the
-    // expected ratio, so the first settled window is already on target.
-    const double expected_start = first.amplitude_final * 2.0 * kTarget / first.rms_final;
-    EXPECT_DOUBLE_EQ(controller.start_amplitude(2.0 * kTarget), expected_start);
-    const PointResult second = controller.run_point(plant, 9.5, 2.0 * kTarget);
+    // Next level of the same sweep, 1.5 times the target (a step inside max_step_factor):
+    // the linear plant needs exactly the expected ratio, so the first settled window is
+    // already on target.
+    const double expected_start = first.amplitude_final * 1.5 * kTarget / first.rms_final;
+    EXPECT_DOUBLE_EQ(controller.start_amplitude(1.5 * kTarget), expected_start);
+    const PointResult second = controller.run_point(plant, 9.5, 1.5 * kTarget);
     EXPECT_EQ(second.status, PointStatus::kConverged);
     EXPECT_EQ(second.updates, 0);
     ASSERT_EQ(second.amplitudes_tried.size(), 1U);
     EXPECT_DOUBLE_EQ(second.amplitudes_tried.front(), expected_start);
-    EXPECT_LE(relative_error(second.rms_final, 2.0 * kTarget), kTolerance);
+    EXPECT_LE(relative_error(second.rms_final, 1.5 * kTarget), kTolerance);
     expect_consistent_record(second, o);
 
     // After reset() the next sweep starts from initial_amplitude again.

@@ -99,5 +99,59 @@ TEST(AssessWindow, AZeroResponseIsTooLowNotADrift) {
     EXPECT_EQ(r.level, 0.0);
 }
 
+/// x_k = 1 - 0.1 * 0.9^k: a transient approaching 1 geometrically, 10 % away at first.
+const std::vector<double> kGeometricApproach{1.0 - 0.1, 1.0 - 0.09, 1.0 - 0.081, 1.0 - 0.0729};
+
+TEST(AssessWindow, AGeometricApproachInsideTheSpreadIsNotSettled) {
+    // Spread 2.9 % < 5 %, but 7.3 % of the way is still to come (more than half the
+    // tolerance): a transient, not a steady state.
+    const WindowVerdict r = assess_window(kGeometricApproach, 1.0, options());
+    EXPECT_EQ(r.state, WindowState::kUnsettled);
+    // Without the drift test the same window passed as settled.
+    ControllerOptions no_drift = options();
+    no_drift.drift_horizon_periods = 0;
+    EXPECT_EQ(assess_window(kGeometricApproach, 1.0, no_drift).state, WindowState::kSettled);
+}
+
+TEST(AssessWindow, ADriftOfLessThanHalfTheToleranceIsSettledAtWhereItIsGoing) {
+    // x_k = 1 - 0.01 * 0.5^k: 1 % still to come at most; the level is the steady value 1.
+    const std::vector<double> v{1.0 - 0.01, 1.0 - 0.005, 1.0 - 0.0025, 1.0 - 0.00125};
+    const WindowVerdict r = assess_window(v, 1.0, options());
+    EXPECT_EQ(r.state, WindowState::kSettled);
+    EXPECT_NEAR(r.level, 1.0, kRounding);
+    EXPECT_NEAR(r.mean, (v[0] + v[1] + v[2] + v[3]) / 4.0, kRounding);
+}
+
+TEST(AssessWindow, ACreepThatDoesNotDecayIsNeverSettled) {
+    // +0.5 % per period, forever: extrapolated over the 32-period horizon, 16 % to come.
+    const std::vector<double> v{1.0, 1.005, 1.010, 1.015};
+    EXPECT_EQ(assess_window(v, 1.0, options()).state, WindowState::kUnsettled);
+}
+
+TEST(AssessWindow, ADecayingDriftTowardTheTargetDecidesEarlyOnWhereItIsGoing) {
+    // Heading for 1.0 while the target is 1.5: too low beyond doubt even where it ends.
+    const WindowVerdict r = assess_window(kGeometricApproach, 1.5, options());
+    EXPECT_EQ(r.state, WindowState::kEarlyLow);
+    EXPECT_NEAR(r.level, 1.0, kRounding);
+    // Heading for 1.0 with the target at 1.0: no early decision, it may get there.
+    EXPECT_EQ(assess_window(kGeometricApproach, 1.0, options()).state, WindowState::kUnsettled);
+}
+
+TEST(AssessDrift, ScatterIsNotAGeometricDecay) {
+    // Monotone, but successive ratios 0.2 and 4: not one decay.
+    const Drift d = assess_drift(std::vector<double>{1.0, 1.05, 1.06, 1.10}, 32);
+    EXPECT_TRUE(d.monotone);
+    EXPECT_FALSE(d.decaying);
+    EXPECT_FALSE(assess_drift(std::vector<double>{1.0, 1.05, 1.02, 1.03}, 32).monotone);
+    EXPECT_FALSE(assess_drift(kGeometricApproach, 0).monotone);
+}
+
+TEST(AssessDrift, AGeometricDecayIsExtrapolatedToItsLimit) {
+    const Drift d = assess_drift(kGeometricApproach, 32);
+    EXPECT_TRUE(d.decaying);
+    EXPECT_NEAR(d.ratio, 0.9, kRounding);
+    EXPECT_NEAR(d.remaining, 0.0729, kRounding);
+}
+
 }  // namespace
 }  // namespace sb::control
