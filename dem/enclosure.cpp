@@ -1,7 +1,8 @@
-// Enclosure geometry set-up and queries that are not on the hot path.
+// Enclosure geometry set-up, queries that are not on the hot path, horizontal layers.
 #include "dem/enclosure.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "core/units.hpp"
@@ -43,6 +44,37 @@ double Enclosure::clearance(const Eigen::Vector3d& xl) const {
         gap = std::min(gap, big - delta);
     });
     return gap;
+}
+
+HorizontalLayers::HorizontalLayers(const Enclosure& enclosure, const Eigen::Vector3d& up_local,
+                                   int count)
+    : count_(std::max(0, count)) {
+    const double norm = up_local.norm();
+    up_ = norm > 0.0 && std::isfinite(norm) ? Eigen::Vector3d(up_local / norm)
+                                            : Eigen::Vector3d(0.0, 0.0, 1.0);
+    // Support function of the cavity along up: the box corners, or for the cylinder the axis
+    // segment widened by the radius times the lateral part of up.
+    const Eigen::Vector3d lo = enclosure.lower(), hi = enclosure.upper();
+    double h_lo = 0.0, h_hi = 0.0;
+    if (enclosure.options().shape == EnclosureShape::cylinder) {
+        const double lateral = std::sqrt(up_.x() * up_.x() + up_.y() * up_.y());
+        const double r = 0.5 * enclosure.options().inner_diameter_m;
+        h_lo = std::min(up_.z() * lo.z(), up_.z() * hi.z()) - r * lateral;
+        h_hi = std::max(up_.z() * lo.z(), up_.z() * hi.z()) + r * lateral;
+    } else {
+        for (int a = 0; a < 3; ++a) {
+            h_lo += std::min(up_[a] * lo[a], up_[a] * hi[a]);
+            h_hi += std::max(up_[a] * lo[a], up_[a] * hi[a]);
+        }
+    }
+    lo_ = h_lo;
+    span_ = h_hi - h_lo;
+}
+
+HorizontalLayers HorizontalLayers::for_gravity(const Enclosure& enclosure,
+                                               const EnclosureState& pose,
+                                               const Eigen::Vector3d& gravity_world, int count) {
+    return HorizontalLayers(enclosure, pose.rotation.transpose() * (-gravity_world), count);
 }
 
 }  // namespace sb::dem

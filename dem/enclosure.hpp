@@ -34,6 +34,11 @@ struct EnclosureState {
     Eigen::Vector3d rotate(const Eigen::Vector3d& nl) const {
         return rotation.col(0) * nl.x() + rotation.col(1) * nl.y() + rotation.col(2) * nl.z();
     }
+    /// False if any component of the pose or velocity is NaN or infinite.
+    bool finite() const {
+        return position_m.allFinite() && rotation.allFinite() && velocity_m_s.allFinite() &&
+               angular_velocity_rad_s.allFinite();
+    }
 };
 
 /// Geometry queries in the enclosure frame.
@@ -47,14 +52,22 @@ class Enclosure {
     const Eigen::Vector3d& upper() const { return hi_; }
     /// Cavity volume without obstacles [m^3].
     double volume() const;
-    /// True if the centre xl lies inside the cavity (walls only).
+    /// True if the centre xl lies inside the cavity and not inside a solid obstacle (a plate
+    /// or a rod of the obstacle grid). False for a non-finite xl.
     bool contains(const Eigen::Vector3d& xl) const {
-        if (xl.z() < lo_.z() || xl.z() > hi_.z()) return false;
+        return inside_walls(xl) && !inside_obstacle(xl);
+    }
+    /// True if the centre xl lies inside the outer walls (obstacles ignored).
+    bool inside_walls(const Eigen::Vector3d& xl) const {
+        // written so that NaN compares as outside
+        if (!(xl.z() >= lo_.z() && xl.z() <= hi_.z())) return false;
         if (options_.shape == EnclosureShape::cylinder) {
             return xl.x() * xl.x() + xl.y() * xl.y() <= radius_ * radius_;
         }
         return xl.x() >= lo_.x() && xl.x() <= hi_.x() && xl.y() >= lo_.y() && xl.y() <= hi_.y();
     }
+    /// True if the point xl lies strictly inside a plate or a rod.
+    bool inside_obstacle(const Eigen::Vector3d& xl) const;
     /// Shortest distance from xl to the walls and obstacles (negative if inside a solid) [m].
     double clearance(const Eigen::Vector3d& xl) const;
 
@@ -77,6 +90,62 @@ class Enclosure {
 /// plates from kPlateBase; rods from kRodBase.
 inline constexpr std::uint32_t kPlateBase = 16;
 inline constexpr std::uint32_t kRodBase = 1u << 16;
+
+/// Horizontal layers of the cavity for the energy dissipation per layer (paper 002, Fig. 13:
+/// layers counted upwards from the bottom of the bed). `count` slabs of equal thickness
+/// normal to `up`, the direction against gravity in the enclosure frame, spanning the
+/// cavity's extent along `up`. With the axis vertical (up = local z) the slabs are those along
+/// local z; with the axis horizontal they still stack along gravity.
+class HorizontalLayers {
+  public:
+    HorizontalLayers() = default;
+    /// up_local need not be unit; zero means local z.
+    HorizontalLayers(const Enclosure& enclosure, const Eigen::Vector3d& up_local, int count);
+    /// Layers for gravity g (world frame) with the enclosure at `pose` (the rest pose): up is
+    /// -g expressed in the enclosure frame; the layers then move with the enclosure.
+    static HorizontalLayers for_gravity(const Enclosure& enclosure, const EnclosureState& pose,
+                                        const Eigen::Vector3d& gravity_world, int count);
+
+    int count() const { return count_; }
+    const Eigen::Vector3d& up() const { return up_; }
+    /// Height range of the cavity along up [m].
+    double lowest() const { return lo_; }
+    double highest() const { return lo_ + span_; }
+    /// Layer of the enclosure-frame point xl, 0 = bottom; points beyond the range go to the
+    /// first or last layer.
+    int index(const Eigen::Vector3d& xl) const {
+        const double h = up_.x() * xl.x() + up_.y() * xl.y() + up_.z() * xl.z();
+        const double f = (h - lo_) / span_ * count_;
+        if (!(f > 0.0)) return 0;  // also NaN
+        return f >= count_ ? count_ - 1 : static_cast<int>(f);
+    }
+
+  private:
+    Eigen::Vector3d up_{0.0, 0.0, 1.0};
+    double lo_ = 0.0, span_ = 1.0;
+    int count_ = 0;
+};
+
+inline bool Enclosure::inside_obstacle(const Eigen::Vector3d& xl) const {
+    for (const auto& pl : options_.plates) {
+        if ((xl.array() > pl.min_corner_m.array()).all() &&
+            (xl.array() < pl.max_corner_m.array()).all()) {
+            return true;
+        }
+    }
+    if (!options_.rods.enabled) return false;
+    const auto& g = options_.rods;
+    const double rr = 0.5 * g.rod_diameter_m, s = g.cell_size_m;
+    for (int a = 0; a < 3; ++a) {  // the nearest rod along each axis, as in rods_contacts
+        const int b = (a + 1) % 3, c = (a + 2) % 3;
+        const double fb = std::round((xl[b] - g.origin_m[b]) / s);
+        const double fc = std::round((xl[c] - g.origin_m[c]) / s);
+        if (fb < rod_lo_[b] || fb > rod_hi_[b] || fc < rod_lo_[c] || fc > rod_hi_[c]) continue;
+        const double db = xl[b] - (g.origin_m[b] + fb * s), dc = xl[c] - (g.origin_m[c] + fc * s);
+        if (db * db + dc * dc < rr * rr) return true;
+    }
+    return false;
+}
 
 template <class Emit>
 void Enclosure::for_each_contact(const Eigen::Vector3d& xl, double r, Emit&& emit) const {

@@ -1,10 +1,13 @@
-// Set-up helpers: radii, random filling, settling, particle files, VTK, automatic stiffness.
+// Set-up helpers: radii, random filling, settling, pouring, particle files, VTK, automatic
+// stiffness.
 #include "dem/setup.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -14,6 +17,103 @@ namespace sb::dem {
 namespace {
 /// Portable uniform [0,1) from the raw 64-bit engine output (std distributions differ).
 double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+
+/// Uniform grid of the spheres placed so far, for the overlap test of random insertion: a
+/// candidate is compared with the spheres of its 27 neighbouring cells only (cells at least
+/// the largest diameter wide), not with every placed sphere.
+class InsertionGrid {
+  public:
+    InsertionGrid(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double cell,
+                  std::size_t capacity)
+        : lo_(lo), next_(capacity, -1) {
+        const Eigen::Vector3d ext = hi - lo;
+        // at most ~4 cells per sphere slot (plus a floor), so tiny spheres in a big cavity
+        // do not allocate a huge grid; larger cells stay correct, only slower
+        const double cells_max = 4.0 * static_cast<double>(capacity) + 4096.0;
+        cell_ = std::max(cell, std::cbrt(ext.prod() / cells_max));
+        for (int a = 0; a < 3; ++a) dims_[a] = std::max(1, static_cast<int>(ext[a] / cell_) + 1);
+        head_.assign(static_cast<std::size_t>(dims_[0]) * dims_[1] * dims_[2], -1);
+    }
+    void add(std::size_t id, const Eigen::Vector3d& x) {
+        const std::size_t c = flat(index(x));
+        next_[id] = head_[c];
+        head_[c] = static_cast<std::int64_t>(id);
+    }
+    /// True if the sphere (x, r) overlaps a placed sphere (with the 1e-9 relative margin of
+    /// the insertion, so that touching spheres start just apart).
+    bool overlaps(const Eigen::Vector3d& x, double r, const std::vector<Eigen::Vector3d>& pos,
+                  const std::vector<double>& radii) const {
+        const std::array<int, 3> c = index(x);
+        for (int k = std::max(c[2] - 1, 0); k <= std::min(c[2] + 1, dims_[2] - 1); ++k) {
+            for (int j = std::max(c[1] - 1, 0); j <= std::min(c[1] + 1, dims_[1] - 1); ++j) {
+                for (int i = std::max(c[0] - 1, 0); i <= std::min(c[0] + 1, dims_[0] - 1); ++i) {
+                    for (std::int64_t q = head_[flat({i, j, k})]; q >= 0;
+                         q = next_[static_cast<std::size_t>(q)]) {
+                        const auto u = static_cast<std::size_t>(q);
+                        const double rs = r + radii[u];
+                        if ((x - pos[u]).squaredNorm() < rs * rs * (1.0 + 1e-9)) return true;
+                    }
+                }
+            }
+        }
+        return false;
+    }
+
+  private:
+    std::array<int, 3> index(const Eigen::Vector3d& x) const {
+        std::array<int, 3> c{};
+        for (int a = 0; a < 3; ++a) {
+            c[a] =
+                std::clamp(static_cast<int>(std::floor((x[a] - lo_[a]) / cell_)), 0, dims_[a] - 1);
+        }
+        return c;
+    }
+    std::size_t flat(const std::array<int, 3>& c) const {
+        return (static_cast<std::size_t>(c[2]) * static_cast<std::size_t>(dims_[1]) +
+                static_cast<std::size_t>(c[1])) *
+                   static_cast<std::size_t>(dims_[0]) +
+               static_cast<std::size_t>(c[0]);
+    }
+
+    Eigen::Vector3d lo_;
+    double cell_ = 1.0;
+    int dims_[3]{1, 1, 1};
+    std::vector<std::int64_t> head_, next_;
+};
+
+/// Draws up to max_attempts candidate centres for a sphere of radius r, uniform over the
+/// cavity's bounding box (three portable uniforms per attempt); the first one that clears the
+/// walls, the obstacles and every sphere in the grid is returned.
+std::optional<Eigen::Vector3d> find_free_place(const Enclosure& enc, const InsertionGrid& grid,
+                                               double r, const std::vector<Eigen::Vector3d>& pos,
+                                               const std::vector<double>& radii,
+                                               std::mt19937_64& rng, int max_attempts) {
+    const Eigen::Vector3d lo = enc.lower(), hi = enc.upper();
+    for (int a = 0; a < max_attempts; ++a) {
+        Eigen::Vector3d x;
+        for (int d = 0; d < 3; ++d) {
+            x[d] = lo[d] + r + uniform01(rng) * std::max(0.0, hi[d] - lo[d] - 2.0 * r);
+        }
+        if (!enc.contains(x) || enc.clearance(x) < r * (1.0 + 1e-9)) continue;
+        if (grid.overlaps(x, r, pos, radii)) continue;
+        return x;
+    }
+    return std::nullopt;
+}
+
+double largest(const std::vector<double>& v) {
+    return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end());
+}
+
+double sphere_volume(double r) { return 4.0 / 3.0 * kPi * r * r * r; }
+
+/// Volume of the spheres order[0..count) [m^3].
+double volume_of(const std::vector<double>& radii, const std::vector<std::size_t>& order,
+                 std::size_t count) {
+    double v = 0.0;
+    for (std::size_t k = 0; k < count; ++k) v += sphere_volume(radii[order[k]]);
+    return v;
+}
 }  // namespace
 
 std::vector<double> make_radii(const ParticleOptions& o, std::uint64_t seed) {
@@ -53,35 +153,23 @@ ParticleSet fill_random(const SolverOptions& options, std::uint64_t seed, int ma
     std::mt19937_64 rng(seed ^ 0x9E3779B97F4A7C15ull);
     s.positions_m.assign(radii.size(), Eigen::Vector3d::Zero());
     s.radii_m = radii;
-    std::vector<std::size_t> placed;
-    const Eigen::Vector3d lo = enc.lower(), hi = enc.upper();
+    InsertionGrid grid(enc.lower(), enc.upper(), 2.0 * largest(radii), radii.size());
+    std::size_t placed = 0;
     for (std::size_t i : order) {
-        const double r = radii[i];
-        bool ok = false;
-        for (int a = 0; a < max_attempts && !ok; ++a) {
-            Eigen::Vector3d x;
-            for (int d = 0; d < 3; ++d) {
-                x[d] = lo[d] + r + uniform01(rng) * std::max(0.0, hi[d] - lo[d] - 2.0 * r);
-            }
-            if (!enc.contains(x) || enc.clearance(x) < r * (1.0 + 1e-9)) continue;
-            ok = true;
-            for (std::size_t j : placed) {
-                const double rs = r + radii[j];
-                if ((x - s.positions_m[j]).squaredNorm() < rs * rs * (1.0 + 1e-9)) {
-                    ok = false;
-                    break;
-                }
-            }
-            if (ok) s.positions_m[i] = x;
+        const auto x =
+            find_free_place(enc, grid, radii[i], s.positions_m, s.radii_m, rng, max_attempts);
+        if (!x) {
+            throw std::runtime_error(
+                "fill_random: could not place particle " + std::to_string(placed + 1) + " of " +
+                std::to_string(radii.size()) +
+                " without overlap: random insertion jams near a solid fraction of 0.38 (here " +
+                format_value(volume_of(radii, order, placed) / enc.volume()) +
+                " of the cavity); fill denser beds with pour(), which settles batches under "
+                "gravity");
         }
-        if (!ok) {
-            throw std::runtime_error("fill_random: could not place particle " +
-                                     std::to_string(placed.size() + 1) + " of " +
-                                     std::to_string(radii.size()) +
-                                     " without overlap; the cavity is too full for random "
-                                     "insertion (use a taller cavity and settle)");
-        }
-        placed.push_back(i);
+        s.positions_m[i] = *x;
+        grid.add(i, *x);
+        ++placed;
     }
     return s;
 }
@@ -97,32 +185,132 @@ Violations SettleOptions::validate() const {
 
 ParticleSet settle(const SolverOptions& options, const ParticleSet& initial,
                    const SettleOptions& so) {
+    if (const Violations v = so.validate(); !v.empty()) {
+        throw std::invalid_argument("settle: " + v.front().key + " = " + v.front().value + ": " +
+                                    v.front().constraint);
+    }
     SolverOptions o = options;
     o.lock = {};
     o.track_energy = false;
+    if (so.static_friction && o.contact.tangential == TangentialLaw::directional_coulomb) {
+        o.contact.tangential = TangentialLaw::coulomb_spring;
+    }
     Solver solver(o, initial);
     const auto steps = static_cast<std::int64_t>(std::ceil(so.max_time_s / so.dt_s));
     const auto min_steps = static_cast<std::int64_t>(std::ceil(so.min_time_s / so.dt_s));
+    int quiet = 0;
     for (std::int64_t k = 0; k < steps; ++k) {
         solver.step(so.dt_s);
-        if (k >= min_steps && k % 100 == 0) {
-            double ke = 0.0;
-            const auto& p = solver.particles();
-            for (std::size_t i = 0; i < p.size(); ++i) {
-                // translational only: spin about a contact normal meets no resistance
-                ke += 0.5 / p.inv_mass[i] * p.v[i].squaredNorm();
-            }
-            if (ke < so.kinetic_threshold_j) {
-                ParticleSet s = solver.local_snapshot();
-                for (auto& v : s.velocities_m_s) v.setZero();
-                for (auto& w : s.angular_velocities_rad_s) w.setZero();
-                return s;
-            }
+        if (k >= min_steps && k % kSettleCheckInterval == 0) {
+            // a bouncing bed passes through low kinetic energy at its turning points: demand
+            // several consecutive quiet checks
+            quiet = translational_kinetic_energy(solver.particles()) < so.kinetic_threshold_j
+                        ? quiet + 1
+                        : 0;
+            if (quiet >= kSettleQuietChecks) return solver.local_snapshot();
         }
     }
     throw std::runtime_error("settle: kinetic energy still above " +
                              format_value(so.kinetic_threshold_j) + " J after " +
                              format_value(so.max_time_s) + " s");
+}
+
+double translational_kinetic_energy(const ParticleState& p) {
+    double ke = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i) ke += 0.5 / p.inv_mass[i] * p.v[i].squaredNorm();
+    return ke;
+}
+
+Violations PourOptions::validate() const {
+    Violations out;
+    if (max_attempts_per_particle < 1) {
+        out.push_back({"max_attempts_per_particle", std::to_string(max_attempts_per_particle),
+                       "must be >= 1", "candidate places tried per sphere and batch"});
+    }
+    if (!(batch_kinetic_factor >= 1.0 && std::isfinite(batch_kinetic_factor))) {
+        out.push_back({"batch_kinetic_factor", format_value(batch_kinetic_factor), "must be >= 1",
+                       "rest threshold of the intermediate batches / final threshold [-]"});
+    }
+    require_in_range(out, "friction_scale", friction_scale, 0.0, 1.0,
+                     "friction of the pour / configured friction [-]");
+    if (max_batches < 1) {
+        out.push_back({"max_batches", std::to_string(max_batches), "must be >= 1",
+                       "insert-and-settle rounds before giving up"});
+    }
+    return out;
+}
+
+ParticleSet pour(const SolverOptions& options, std::uint64_t seed, const SettleOptions& so,
+                 const PourOptions& po) {
+    Violations v = options.validate();
+    append_prefixed(v, "settle", so.validate());
+    append_prefixed(v, "pour", po.validate());
+    if (!(options.gravity_m_s2.norm() > 0.0)) {
+        v.push_back({"gravity_m_s2", "0", "must be non-zero", "gravity that settles the bed"});
+    }
+    if (!v.empty()) {
+        throw std::invalid_argument("pour: " + v.front().key + " = " + v.front().value + ": " +
+                                    v.front().constraint);
+    }
+    const Enclosure enc(options.enclosure);
+    const std::vector<double> radii = make_radii(options.particles, seed);
+    const std::size_t n = radii.size();
+    std::mt19937_64 rng(seed ^ 0xD1B54A32D192ED03ull);
+    ParticleSet bed;  // always the first bed.radii_m.size() spheres of `radii`, settled
+    for (int batch = 0; batch < po.max_batches; ++batch) {
+        // Insert into the free space left by the settled bed, in the (size-mixed) order of
+        // make_radii, until the first sphere finds no free place: each batch is a loose random
+        // layer on top of the bed.
+        const std::size_t before = bed.positions_m.size();
+        InsertionGrid grid(enc.lower(), enc.upper(), 2.0 * largest(radii), n);
+        for (std::size_t i = 0; i < before; ++i) grid.add(i, bed.positions_m[i]);
+        bed.positions_m.reserve(n);
+        std::vector<double> r = bed.radii_m;
+        r.reserve(n);
+        for (std::size_t i = before; i < n; ++i) {
+            r.push_back(radii[i]);
+            const auto x = find_free_place(enc, grid, radii[i], bed.positions_m, r, rng,
+                                           po.max_attempts_per_particle);
+            if (!x) {
+                r.pop_back();
+                break;
+            }
+            bed.positions_m.push_back(*x);
+            grid.add(i, *x);
+        }
+        const std::size_t now = bed.positions_m.size();
+        if (now == before) {
+            throw std::runtime_error(
+                "pour: the settled bed of " + std::to_string(now) + " of " + std::to_string(n) +
+                " spheres (solid fraction " + format_value(solid_fraction(bed, enc)) +
+                " of the cavity) leaves no free place for the next one: the cavity is too small "
+                "for this count");
+        }
+        bed.radii_m = r;
+        bed.velocities_m_s.resize(now, Eigen::Vector3d::Zero());
+        bed.angular_velocities_rad_s.resize(now, Eigen::Vector3d::Zero());
+        SolverOptions o = options;
+        o.particles.count = static_cast<int>(now);
+        for (PairProperties* pair : {&o.contact.particle_particle, &o.contact.particle_wall}) {
+            pair->sliding_friction *= po.friction_scale;
+            pair->rolling_friction *= po.friction_scale;
+        }
+        SettleOptions batch_settle = so;
+        if (now < n) batch_settle.kinetic_threshold_j *= po.batch_kinetic_factor;
+        bed = settle(o, bed, batch_settle);
+        if (now == n && po.friction_scale != 1.0) bed = settle(options, bed, so);
+        if (now == n) return bed;
+    }
+    throw std::runtime_error("pour: " + std::to_string(bed.positions_m.size()) + " of " +
+                             std::to_string(n) + " spheres placed after " +
+                             std::to_string(po.max_batches) +
+                             " batches (pour.max_batches); the cavity is nearly full");
+}
+
+double solid_fraction(const ParticleSet& particles, const Enclosure& enclosure) {
+    double v = 0.0;
+    for (double r : particles.radii_m) v += sphere_volume(r);
+    return v / enclosure.volume();
 }
 
 void save_particles(const std::string& path, const ParticleSet& p) {
@@ -244,15 +432,32 @@ AutoStiffness auto_stiffness(const AutoStiffnessInput& in) {
     const double vi = out.impact_speed_m_s;
     out.max_overlap_m = in.max_overlap_fraction * in.particle_diameter_m;
     const double d = out.max_overlap_m, me = out.effective_mass_kg;
+    // The same k serves both contact types; the pair contact (m* = m/2) is the shorter one
+    // (t_c ~ sqrt(m*) for Hooke, ~ m*^{2/5} for Hertz), so it sets the time step.
+    auto contact_time = [&](double m_eff) {
+        return in.law == NormalLaw::hooke ? hooke_contact_time(m_eff, out.stiffness, in.restitution)
+                                          : hertz_contact_time(m_eff, out.stiffness, vi);
+    };
     if (in.law == NormalLaw::hooke) {
         out.stiffness = me * vi * vi / (d * d);  // 1/2 m v^2 = 1/2 k delta^2
-        out.contact_time_s = hooke_contact_time(me, out.stiffness, in.restitution);
     } else {
         out.stiffness = 1.25 * me * vi * vi / std::pow(d, 2.5);  // 1/2 m v^2 = 2/5 k delta^2.5
-        out.contact_time_s = hertz_contact_time(me, out.stiffness, vi);
     }
+    out.wall_contact_time_s = contact_time(m);
+    out.pair_contact_time_s = contact_time(0.5 * m);
+    out.contact_time_s = std::min(out.wall_contact_time_s, out.pair_contact_time_s);
     out.time_step_s = in.time_step_fraction * out.contact_time_s;
     return out;
+}
+
+std::string describe(const AutoStiffness& a, NormalLaw law) {
+    std::ostringstream out;
+    out << std::setprecision(4) << "stiffness " << a.stiffness
+        << (law == NormalLaw::hooke ? " N/m" : " N/m^1.5") << " (impact speed "
+        << a.impact_speed_m_s << " m/s, largest overlap " << a.max_overlap_m
+        << " m), contact time particle-particle " << a.pair_contact_time_s << " s, particle-wall "
+        << a.wall_contact_time_s << " s, time step " << a.time_step_s << " s";
+    return out.str();
 }
 
 }  // namespace sb::dem

@@ -82,6 +82,10 @@ Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
              "must equal the number of positions and radii given (" + std::to_string(n) + ")",
              "number of particles"});
     }
+    if (!enclosure.finite()) {
+        v.push_back({"enclosure_state", "non-finite", "must be finite",
+                     "initial enclosure pose and velocity"});
+    }
     if (!v.empty()) throw std::invalid_argument(join(v));
 
     // Pair coefficients: [0] particle-particle, [1] particle-wall.
@@ -185,7 +189,15 @@ int Solver::thread_count() const {
     return options_.threads > 0 ? options_.threads : omp_get_max_threads();
 }
 
-void Solver::set_enclosure_state(const EnclosureState& state) { enclosure_state_ = state; }
+void Solver::set_enclosure_state(const EnclosureState& state) {
+    if (!state.finite()) {  // else every particle would look outside the enclosure
+        std::ostringstream msg;
+        msg << kind_name(SimulationError::Kind::not_finite)
+            << ": enclosure pose or velocity at step " << step_ << ", t = " << time_ << " s";
+        throw SimulationError(SimulationError::Kind::not_finite, step_, time_, -1, msg.str());
+    }
+    enclosure_state_ = state;
+}
 
 void Solver::lock(const std::vector<int>& ids) {
     for (int id : ids) {

@@ -6,6 +6,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+
+#include "dem/solver.hpp"
+#include "test_helpers.hpp"
 
 namespace sb::dem {
 namespace {
@@ -68,32 +72,272 @@ TEST(ParticleFile, SaveAndLoadRoundTripsExactly) {
     std::filesystem::remove(path);
 }
 
-TEST(Settle, SettledStateIsAtRestAndLoadable) {
+/// The settle threshold of these tests [J]: 20 spheres of 3 mm steel (m = 0.11 g) share it,
+/// an rms speed of sqrt(2e-9 / (20 * 1.1e-4)) = 1e-3 m/s.
+constexpr double kRestKineticJ = 1e-9;
+
+SolverOptions settle_options_for_test() {
     SolverOptions o;
     o.particles.count = 20;
     o.contact.normal_stiffness = 1e4;
+    o.contact.tangential = TangentialLaw::coulomb_spring;  // the law settle() uses anyway
     o.contact.particle_particle.restitution = 0.3;
     o.contact.particle_wall.restitution = 0.3;
-    SettleOptions so;
-    so.dt_s = 2e-5;
-    const ParticleSet s = settle(o, fill_random(o, 2), so);
-    ASSERT_EQ(s.positions_m.size(), 20u);
-    for (const auto& x : s.positions_m) EXPECT_LT(x.z(), 12e-3);
+    return o;
 }
 
-TEST(WriteVtk, WritesLegacyPolydata) {
+TEST(Settle, SettledStateIsAtRestAndLoadable) {
+    const SolverOptions o = settle_options_for_test();
+    SettleOptions so;
+    so.dt_s = 2e-5;
+    so.kinetic_threshold_j = kRestKineticJ;
+    const ParticleSet s = settle(o, fill_random(o, 2), so);
+    ASSERT_EQ(s.positions_m.size(), 20u);
+    // settle() hands back the velocities it stopped at: the rest check below is on them
+    bool any_moving = false;
+    for (const auto& v : s.velocities_m_s) any_moving = any_moving || v.squaredNorm() > 0.0;
+    EXPECT_TRUE(any_moving);
+
+    // at rest, by the solver's own energy, and it stays so (not a turning point of a bounce)
+    Solver rest(o, s);
+    EXPECT_LT(rest.energy().kinetic_translational, kRestKineticJ);
+    double worst_ke = 0.0;
+    for (int k = 0; k < 2500; ++k) {  // 0.05 s
+        rest.step(so.dt_s);
+        worst_ke = std::max(worst_ke, rest.energy().kinetic_translational);
+    }
+    EXPECT_LT(worst_ke, kRestKineticJ);
+    // still coming to rest, not bouncing: the energy has dropped far below the bound
+    EXPECT_LT(rest.energy().kinetic_translational, 1e-2 * kRestKineticJ);
+    const ParticleSet later = rest.local_snapshot();
+    for (std::size_t i = 0; i < s.positions_m.size(); ++i) {
+        // what the rms speed of the bound, 1e-3 m/s, covers in the 0.05 s
+        EXPECT_LT((later.positions_m[i] - s.positions_m[i]).norm(), 5e-5) << i;
+        EXPECT_LT(s.positions_m[i].z(), 12e-3);  // a bed of 20 in the 19 mm cylinder
+    }
+
+    // save -> load is exact, and a solver continued from the loaded state is bitwise the same
+    const auto path = std::filesystem::temp_directory_path() / "sb_dem_settled.csv";
+    save_particles(path.string(), s);
+    const ParticleSet q = load_particles(path.string());
+    std::filesystem::remove(path);
+    EXPECT_EQ(q.positions_m, s.positions_m);
+    EXPECT_EQ(q.radii_m, s.radii_m);
+    EXPECT_EQ(q.velocities_m_s, s.velocities_m_s);
+    EXPECT_EQ(q.angular_velocities_rad_s, s.angular_velocities_rad_s);
+    Solver from_memory(o, s), from_file(o, q);
+    for (int k = 0; k < 500; ++k) {
+        from_memory.step(so.dt_s);
+        from_file.step(so.dt_s);
+    }
+    for (std::size_t i = 0; i < s.positions_m.size(); ++i) {
+        ASSERT_EQ(from_memory.particles().x[i], from_file.particles().x[i]) << i;
+        ASSERT_EQ(from_memory.particles().v[i], from_file.particles().v[i]) << i;
+        ASSERT_EQ(from_memory.particles().w[i], from_file.particles().w[i]) << i;
+    }
+    EXPECT_EQ(from_memory.wall_force(), from_file.wall_force());
+}
+
+/// A box of 7 x 7 x 6 diameters and 250 spheres of 2 mm: 0.445 of the cavity, beyond what
+/// random insertion reaches (jamming near 0.38, less with walls).
+SolverOptions small_box_for_pouring(int count) {
+    SolverOptions o;
+    o.particles.count = count;
+    o.particles.diameter_m = 2e-3;
+    o.enclosure.shape = EnclosureShape::box;
+    o.enclosure.length_x_m = 14e-3;
+    o.enclosure.length_y_m = 14e-3;
+    o.enclosure.height_m = 12e-3;
+    // soft enough for dt = 2e-5 s (pair contact time 1.8e-4 s); the static overlap under the
+    // whole column (6 layers, 2 mN) is 4e-7 m, 4e-4 of the radius
+    o.contact.normal_stiffness = 5e3;
+    o.contact.tangential = TangentialLaw::coulomb_spring;
+    return o;
+}
+
+SettleOptions pour_settle_options() {
+    SettleOptions so;
+    so.dt_s = 2e-5;
+    so.kinetic_threshold_j = 1e-9;  // 250 spheres of 33 mg: rms speed 5e-4 m/s
+    so.min_time_s = 0.02;           // a fall of 12 mm takes 0.05 s: the quiet checks decide
+    return so;
+}
+
+/// Poured frictional spheres pack at 0.55-0.6 away from walls and surface; random
+/// insertion jams at 0.38. The bound sits between, clear of both.
+constexpr double kPouredInteriorFractionAtLeast = 0.5;
+/// Largest overlap allowed in the settled bed, as a fraction of the radius: 25 times the
+/// static overlap under the whole column (the run-time guard stops at 0.5).
+constexpr double kSettledOverlapFraction = 1e-2;
+
+TEST(Pour, FillsABoxBeyondRandomInsertionWithABedAtRestInside) {
+    const SolverOptions o = small_box_for_pouring(250);
+    EXPECT_THROW(fill_random(o, 1, 2000), std::runtime_error);
+    const SettleOptions so = pour_settle_options();
+    const ParticleSet bed = pour(o, 1, so);
+    ASSERT_EQ(bed.positions_m.size(), 250u);
+    const Enclosure enc(o.enclosure);
+    EXPECT_NEAR(solid_fraction(bed, enc), 250 * 4.0 / 3.0 * kPi * 1e-9 / (14e-3 * 14e-3 * 12e-3),
+                1e-12);
+    double top = 0.0;
+    for (std::size_t i = 0; i < bed.positions_m.size(); ++i) {
+        const Eigen::Vector3d& x = bed.positions_m[i];
+        EXPECT_TRUE(enc.contains(x)) << i;
+        EXPECT_GT(enc.clearance(x), bed.radii_m[i] * (1.0 - kSettledOverlapFraction)) << i;
+        top = std::max(top, x.z() + bed.radii_m[i]);
+    }
+    EXPECT_LT(test::largest_pair_overlap_fraction(bed), kSettledOverlapFraction);
+    // bulk packing: one diameter in from the side walls and the floor, two below the top
+    const double d = 2e-3;
+    const double interior =
+        test::packing_fraction_in(bed, Eigen::Vector3d(-7e-3 + d, -7e-3 + d, d),
+                                  Eigen::Vector3d(7e-3 - d, 7e-3 - d, top - 2 * d), 60);
+    RecordProperty("interior_packing_fraction", std::to_string(interior));
+    EXPECT_GT(interior, kPouredInteriorFractionAtLeast);
+    // at rest by the solver's energy of the returned velocities, and staying at rest
+    Solver s(o, bed);
+    EXPECT_LT(s.energy().kinetic_translational, so.kinetic_threshold_j);
+    double worst = 0.0;
+    for (int k = 0; k < 1000; ++k) {  // 0.02 s
+        s.step(so.dt_s);
+        if (k % 50 == 49) worst = std::max(worst, s.energy().kinetic_translational);
+    }
+    EXPECT_LT(worst, so.kinetic_threshold_j);
+}
+
+TEST(Pour, IsDeterministicForASeed) {
+    SolverOptions o = small_box_for_pouring(56);
+    o.enclosure.length_y_m = 8e-3;
+    o.enclosure.height_m = 6e-3;  // 56 spheres (0.35 of the box) need two batches here:
+    EXPECT_THROW(fill_random(o, 5, 5000), std::runtime_error);  // one insertion cannot hold them
+    const ParticleSet a = pour(o, 5, pour_settle_options());
+    const ParticleSet b = pour(o, 5, pour_settle_options());
+    EXPECT_EQ(a.positions_m, b.positions_m);
+    EXPECT_EQ(a.velocities_m_s, b.velocities_m_s);
+    EXPECT_EQ(a.angular_velocities_rad_s, b.angular_velocities_rad_s);
+    const ParticleSet c = pour(o, 6, pour_settle_options());
+    EXPECT_NE(a.positions_m, c.positions_m);
+}
+
+TEST(Pour, FillsAHorizontallyMountedCylinderAlongGravity) {
+    SolverOptions o = small_box_for_pouring(60);
+    o.enclosure.shape = EnclosureShape::cylinder;
+    o.enclosure.inner_diameter_m = 12e-3;
+    o.enclosure.height_m = 14e-3;
+    o.gravity_m_s2 = Eigen::Vector3d(-kStandardGravity, 0, 0);  // axis horizontal: down is -x
+    const ParticleSet bed = pour(o, 3, pour_settle_options());
+    const Enclosure enc(o.enclosure);
+    double centre_x = 0.0;
+    for (const auto& x : bed.positions_m) {
+        EXPECT_TRUE(enc.contains(x));
+        centre_x += x.x() / 60.0;
+    }
+    // 60 spheres fill 0.25 of the cylinder: their centroid lies well below the axis
+    EXPECT_LT(centre_x, -2e-3);
+}
+
+TEST(Pour, ReportsACavityTooSmallForTheCount) {
+    SolverOptions o = small_box_for_pouring(80);
+    o.enclosure.length_x_m = o.enclosure.length_y_m = 6e-3;
+    o.enclosure.height_m = 8e-3;  // room for about 36 poured spheres
+    try {
+        pour(o, 1, pour_settle_options());
+        FAIL() << "no error";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("too small for this count"), std::string::npos)
+            << e.what();
+    }
+    o.gravity_m_s2.setZero();
+    EXPECT_THROW(pour(o, 1, pour_settle_options()), std::invalid_argument);
+}
+
+/// Reads every whitespace-separated token of a file.
+std::vector<std::string> tokens_of(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    std::vector<std::string> out;
+    for (std::string t; in >> t;) out.push_back(t);
+    return out;
+}
+
+TEST(WriteVtk, FollowsTheLegacyPolydataFormatAndReadsBack) {
     ParticleState s;
-    s.x = {{0, 0, 0}, {1, 2, 3}};
-    s.v = s.w = s.x;
-    s.radius = {1, 2};
-    s.locked = {0, 1};
+    s.x = {{0, 0, 0}, {1.2345678901e-3, -2.5e-3, 3.75e-2}, {-4e-3, 5e-3, 6e-3}};
+    s.v = {{0.1, 0.2, 0.3}, {-1.5, 2.25, 1e-7}, {0, 0, -9.5}};
+    s.w = {{1, 2, 3}, {4, 5, 6}, {7, 8, 9}};
+    s.radius = {1e-3, 1.5e-3, 2e-3};
+    s.locked = {0, 1, 0};
     const auto path = std::filesystem::temp_directory_path() / "sb_dem.vtk";
     write_vtk(path.string(), s);
-    std::ifstream in(path);
-    std::string first;
-    std::getline(in, first);
-    EXPECT_EQ(first, "# vtk DataFile Version 3.0");
+    {
+        // the first two lines are fixed lines of the legacy format (version, title)
+        std::ifstream in(path);
+        std::string version, title;
+        std::getline(in, version);
+        std::getline(in, title);
+        EXPECT_EQ(version, "# vtk DataFile Version 3.0");
+        EXPECT_FALSE(title.empty());
+        EXPECT_LT(title.size(), 256u);
+    }
+    const auto t = tokens_of(path);
     std::filesystem::remove(path);
+    std::size_t k = 0;
+    auto expect = [&](const std::string& word) {
+        ASSERT_LT(k, t.size());
+        EXPECT_EQ(t[k], word) << "token " << k;
+        ++k;
+    };
+    auto number = [&] { return k < t.size() ? std::stod(t[k++]) : std::nan(""); };
+    // 10 significant digits are written
+    auto near = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::abs(b) + 1e-300; };
+    k = 0;
+    while (k < t.size() && t[k] != "ASCII") ++k;  // skip the header lines checked above
+    expect("ASCII");
+    expect("DATASET");
+    expect("POLYDATA");
+    expect("POINTS");
+    expect("3");
+    expect("double");
+    for (const auto& x : s.x) {
+        for (int a = 0; a < 3; ++a) EXPECT_TRUE(near(number(), x[a])) << "point " << x.transpose();
+    }
+    expect("VERTICES");
+    expect("3");
+    expect("6");  // cell list size: (1 + 1) per vertex
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_EQ(number(), 1.0);
+        EXPECT_EQ(number(), i);
+    }
+    expect("POINT_DATA");
+    expect("3");
+    std::map<std::string, std::vector<double>> fields;
+    while (k < t.size()) {
+        const std::string kind = t[k++];
+        ASSERT_TRUE(kind == "SCALARS" || kind == "VECTORS") << kind;
+        const std::string name = t[k++];
+        const std::string type = t[k++];
+        EXPECT_TRUE(type == "double" || type == "int") << type;
+        int components = 3;
+        if (kind == "SCALARS") {
+            components = std::stoi(t[k++]);
+            expect("LOOKUP_TABLE");
+            expect("default");
+        }
+        for (int q = 0; q < 3 * components; ++q) fields[name].push_back(number());
+    }
+    ASSERT_EQ(fields.count("radius"), 1u);
+    ASSERT_EQ(fields.count("velocity"), 1u);
+    ASSERT_EQ(fields.count("angular_velocity"), 1u);
+    ASSERT_EQ(fields.count("id"), 1u);
+    ASSERT_EQ(fields.count("locked"), 1u);
+    for (int i = 0; i < 3; ++i) {
+        EXPECT_TRUE(near(fields["radius"][i], s.radius[i]));
+        EXPECT_EQ(fields["id"][i], i);
+        EXPECT_EQ(fields["locked"][i], s.locked[i]);
+        for (int a = 0; a < 3; ++a) {
+            EXPECT_TRUE(near(fields["velocity"][3 * i + a], s.v[i][a])) << i;
+            EXPECT_TRUE(near(fields["angular_velocity"][3 * i + a], s.w[i][a])) << i;
+        }
+    }
 }
 
 TEST(AutoStiffness, LinearStiffnessKeepsTheOverlapAtTheImpactSpeed) {
@@ -119,6 +363,35 @@ TEST(AutoStiffness, EstimatesTheImpactSpeedFromLevelFrequencyAndGap) {
     const double d = 0.01 * 3e-3;
     EXPECT_NEAR(0.4 * a.stiffness * std::pow(d, 2.5), 0.5 * a.effective_mass_kg * v * v,
                 1e-9 * a.effective_mass_kg * v * v);
+}
+
+TEST(AutoStiffness, TimeStepFollowsTheShorterParticleParticleContactTime) {
+    const double m = 7800.0 * 4.0 / 3.0 * kPi * std::pow(1.5e-3, 3);
+    AutoStiffnessInput in;
+    in.impact_speed_m_s = 1.0;
+    in.restitution = 1.0;  // undamped: the closed form pi sqrt(m*/k)
+    const AutoStiffness a = auto_stiffness(in);
+    EXPECT_NEAR(a.wall_contact_time_s, kPi * std::sqrt(m / a.stiffness),
+                1e-12 * a.wall_contact_time_s);
+    EXPECT_NEAR(a.pair_contact_time_s, kPi * std::sqrt(0.5 * m / a.stiffness),
+                1e-12 * a.pair_contact_time_s);
+    EXPECT_EQ(a.contact_time_s, a.pair_contact_time_s);
+    EXPECT_NEAR(a.time_step_s, a.pair_contact_time_s / 20.0, 1e-15 * a.time_step_s);
+    // damped (e = 0.9): both times scale with sqrt(m*), so the ratio stays sqrt(2)
+    in.restitution = 0.9;
+    const AutoStiffness b = auto_stiffness(in);
+    EXPECT_NEAR(b.wall_contact_time_s / b.pair_contact_time_s, std::sqrt(2.0), 1e-12);
+    // Hertz: t = 2.94328 (5 m* / (4 k))^{2/5} v^{-1/5} (the constant 2 (2/5) B(2/5, 1/2) to
+    // six digits, hence the 1e-5 tolerance; Johnson, Contact Mechanics, 11.2)
+    in.law = NormalLaw::hertz;
+    const AutoStiffness h = auto_stiffness(in);
+    auto hertz = [&](double me) { return 2.94328 * std::pow(1.25 * me / h.stiffness, 0.4); };
+    EXPECT_NEAR(h.wall_contact_time_s, hertz(m), 1e-5 * h.wall_contact_time_s);
+    EXPECT_NEAR(h.pair_contact_time_s, hertz(0.5 * m), 1e-5 * h.pair_contact_time_s);
+    EXPECT_NEAR(h.time_step_s, h.pair_contact_time_s / 20.0, 1e-15 * h.time_step_s);
+    const std::string line = describe(h, NormalLaw::hertz);
+    EXPECT_NE(line.find("particle-particle"), std::string::npos) << line;
+    EXPECT_NE(line.find("particle-wall"), std::string::npos) << line;
 }
 
 TEST(AutoStiffness, RejectsMissingSpeedInputs) {

@@ -1,6 +1,9 @@
 // Shared set-ups for the DEM tests.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include "dem/setup.hpp"
 #include "dem/solver.hpp"
 
@@ -42,6 +45,50 @@ inline SolverOptions paper000_options() {
     o.contact.particle_particle = {0.9, 0.6, 0.01};
     o.contact.particle_wall = {0.9, 0.6, 0.01};
     return o;
+}
+
+/// Solid fraction of the axis-aligned region [lo, hi] (enclosure frame): the share of a
+/// regular lattice of m^3 sample points (cell centres) that lies inside a sphere. Counted per
+/// sphere over the lattice points of its bounding box, so the cost is N (2 r m / L)^3. The
+/// lattice error is about the surface-to-volume ratio times the spacing squared, well below
+/// 1e-2 for spacings under a tenth of the radius.
+inline double packing_fraction_in(const ParticleSet& p, const Eigen::Vector3d& lo,
+                                  const Eigen::Vector3d& hi, int m) {
+    const Eigen::Vector3d h = (hi - lo) / m;
+    long long inside = 0;
+    for (std::size_t i = 0; i < p.positions_m.size(); ++i) {
+        const Eigen::Vector3d& x = p.positions_m[i];
+        const double r = p.radii_m[i];
+        int a0[3], a1[3];
+        for (int a = 0; a < 3; ++a) {
+            a0[a] = std::max(0, static_cast<int>(std::floor((x[a] - r - lo[a]) / h[a] - 0.5)));
+            a1[a] = std::min(m - 1, static_cast<int>(std::ceil((x[a] + r - lo[a]) / h[a] - 0.5)));
+        }
+        for (int u = a0[0]; u <= a1[0]; ++u) {
+            for (int v = a0[1]; v <= a1[1]; ++v) {
+                for (int w = a0[2]; w <= a1[2]; ++w) {
+                    const Eigen::Vector3d q =
+                        lo +
+                        Eigen::Vector3d((u + 0.5) * h.x(), (v + 0.5) * h.y(), (w + 0.5) * h.z());
+                    if ((q - x).squaredNorm() < r * r) ++inside;
+                }
+            }
+        }
+    }
+    return static_cast<double>(inside) / (static_cast<double>(m) * m * m);
+}
+
+/// Largest pair overlap / smaller radius over all pairs (O(N^2), for small tests) [-].
+inline double largest_pair_overlap_fraction(const ParticleSet& p) {
+    double worst = 0.0;
+    for (std::size_t i = 0; i < p.positions_m.size(); ++i) {
+        for (std::size_t j = 0; j < i; ++j) {
+            const double gap =
+                (p.positions_m[i] - p.positions_m[j]).norm() - (p.radii_m[i] + p.radii_m[j]);
+            worst = std::max(worst, -gap / std::min(p.radii_m[i], p.radii_m[j]));
+        }
+    }
+    return worst;
 }
 
 }  // namespace sb::dem::test
