@@ -150,10 +150,7 @@ double choose_stiffness(DamperSpec& damper, double level_g, double first_mode_hz
         const auto chosen = dem::auto_stiffness(in);
         contact.normal_stiffness = chosen.stiffness;
         dt = chosen.time_step_s;
-        log = "stiffness " + number_text(chosen.stiffness) + " (automatic: impact speed " +
-              number_text(chosen.impact_speed_m_s) + " m/s, overlap " +
-              number_text(chosen.max_overlap_m) + " m), contact time " +
-              number_text(chosen.contact_time_s) + " s, time step " + number_text(dt) + " s";
+        log = "automatic: " + dem::describe(chosen, contact.normal);
     } else {
         const double contact_time =
             contact.normal == dem::NormalLaw::hooke
@@ -178,8 +175,20 @@ dem::ParticleSet settled_particles(const DamperSpec& damper, const Eigen::Matrix
         dem::SolverOptions local = damper.solver;
         local.gravity_m_s2 = rotation.transpose() * gravity;
         local.track_energy = false;
-        const auto filled = dem::fill_random(local, seed);
-        const auto settled = dem::settle(local, filled, damper.settle);
+        dem::ParticleSet settled;
+        if (damper.fill == DamperSpec::Fill::pour) {
+            settled = dem::pour(local, seed, damper.settle);
+        } else {
+            dem::ParticleSet filled;
+            try {
+                filled = dem::fill_random(local, seed);
+            } catch (const std::runtime_error& e) {
+                throw std::runtime_error("damper " + damper.name + ": " + e.what() +
+                                         " (set dampers." + damper.name +
+                                         ".settle.fill = \"pour\")");
+            }
+            settled = dem::settle(local, filled, damper.settle);
+        }
         fs::create_directories(cache.parent_path());
         const fs::path partial = cache.string() + ".partial";
         dem::save_particles(partial.string(), settled);

@@ -64,6 +64,10 @@ struct DamperSpec {
     double max_overlap_fraction = 0.01;
     double time_step_fraction = 1.0 / 20.0;  ///< DEM step / contact time [-]
     dem::SettleOptions settle;
+    /// How the bed is filled before it settles: random insertion into the whole cavity
+    /// (loose beds, up to a solid fraction of about 0.35) or pouring in batches that settle
+    /// under gravity (dense beds such as paper 002's 90 % fill).
+    enum class Fill { random, pour } fill = Fill::random;
 };
 
 /// What a campaign writes besides points.csv and damping.csv.

@@ -152,6 +152,11 @@ std::vector<DamperSpec> read_dampers(Section dampers) {
         d.settle.max_time_s = settle.number("max_time_s", d.settle.max_time_s, "give up after [s]");
         d.settle.kinetic_threshold_j = settle.number(
             "kinetic_threshold_j", d.settle.kinetic_threshold_j, "at rest below this energy [J]");
+        d.fill = settle.choice("fill", "random", {"random", "pour"},
+                               "random: insert into the whole cavity, then settle; pour: "
+                               "batches settled under gravity (dense beds)") == "pour"
+                     ? DamperSpec::Fill::pour
+                     : DamperSpec::Fill::random;
         settle.finish();
         s.finish();
 

@@ -142,6 +142,7 @@ toml::table damper(const DamperSpec& d) {
     settle.insert("dt_s", d.settle.dt_s);
     settle.insert("max_time_s", d.settle.max_time_s);
     settle.insert("kinetic_threshold_j", d.settle.kinetic_threshold_j);
+    settle.insert("fill", d.fill == DamperSpec::Fill::pour ? "pour" : "random");
     t.insert("settle", settle);
     return t;
 }

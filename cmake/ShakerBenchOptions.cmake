@@ -37,14 +37,22 @@ function(sb_add_module name)
   add_library(sb::${name} ALIAS sb_${name})
 endfunction()
 
-# sb_add_test(NAME LABEL SOURCES ... DEPENDS ...): one GoogleTest executable registered with
-# CTest, every test in it carrying LABEL (unit, validation or slow).
+# sb_add_test(NAME LABEL [SERIAL] SOURCES ... DEPENDS ...): one GoogleTest executable
+# registered with CTest, every test in it carrying LABEL (unit, validation or slow). SERIAL:
+# the tests run alone (RUN_SERIAL) with passive OpenMP waiting, for suites that run campaigns
+# on several threads, so that ctest -j never puts two of them on the two cores and no idle
+# thread spins at a barrier.
 function(sb_add_test name label)
-  cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS" ${ARGN})
+  cmake_parse_arguments(ARG "SERIAL" "" "SOURCES;DEPENDS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
-  target_link_libraries(${name} PRIVATE ${ARG_DEPENDS} GTest::gtest GTest::gtest_main sb::warnings)
+  target_link_libraries(${name} PRIVATE ${ARG_DEPENDS} sb_test_main sb::warnings)
   target_compile_definitions(${name} PRIVATE SB_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
-  gtest_discover_tests(${name} PROPERTIES LABELS ${label} DISCOVERY_TIMEOUT 60)
+  if(ARG_SERIAL)
+    gtest_discover_tests(${name} PROPERTIES LABELS ${label} RUN_SERIAL TRUE
+      ENVIRONMENT "OMP_WAIT_POLICY=PASSIVE" DISCOVERY_TIMEOUT 60)
+  else()
+    gtest_discover_tests(${name} PROPERTIES LABELS ${label} DISCOVERY_TIMEOUT 60)
+  endif()
   # The sanitizer job builds only the unit suites (target sb_unit_tests, tests/CMakeLists.txt).
   set_property(GLOBAL APPEND PROPERTY SB_TESTS_${label} ${name})
 endfunction()

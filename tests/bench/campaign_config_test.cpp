@@ -139,6 +139,24 @@ TEST(CampaignConfig, TheBuiltInConfigLoads) {
     EXPECT_GE(config.structure.beam.masses.size(), 6u);
 }
 
+TEST(CampaignConfig, ADamperFillsByRandomInsertionUnlessToldToPour) {
+    const auto plain = load_campaign_config_text(builtin_config_text(), kBuiltinConfigName);
+    ASSERT_EQ(plain.campaign.dampers.size(), 1u);
+    EXPECT_EQ(plain.campaign.dampers[0].fill, DamperSpec::Fill::random);
+    const auto poured = load_campaign_config_text(
+        std::string(builtin_config_text()) + "\n[dampers.pd.settle]\nfill = \"pour\"\n",
+        "pour.toml");
+    EXPECT_EQ(poured.campaign.dampers[0].fill, DamperSpec::Fill::pour);
+}
+
+TEST(CampaignConfig, AnUnknownFillMethodIsReportedWithItsChoices) {
+    const auto errors =
+        errors_of(std::string(builtin_config_text()) + "\n[dampers.pd.settle]\nfill = \"shake\"\n");
+    ASSERT_EQ(errors.size(), 1u);
+    EXPECT_NE(errors[0].find("dampers.pd.settle.fill = \"shake\""), std::string::npos) << errors[0];
+    EXPECT_NE(errors[0].find("pour"), std::string::npos) << errors[0];
+}
+
 TEST(CampaignConfig, AMissingBeamTableStillLetsTheOtherStructureErrorsThrough) {
     const auto errors = errors_of(
         "[structure]\nkind = \"beam\"\nmodes = 0\n[structure.damping]\ndefault_ratio = 1.5\n"

@@ -3,6 +3,7 @@
 
 #include "bench/campaign.hpp"
 #include "campaign_fixtures.hpp"
+#include "identification/damping_curve.hpp"
 #include "identification/recording_io.hpp"
 
 namespace sb::bench {
@@ -31,9 +32,10 @@ TEST(Campaign, ARealH0CampaignDampsWellAboveTheEmptyBeam) {
     EXPECT_EQ(summary.points, 21);
     EXPECT_EQ(summary.converged + summary.limit_cycle + summary.closest, 21);
     // Near resonance at 2-3 g the bed's response takes 15-20 periods to follow an amplitude
-    // change, so a few points spend their 40-period budget (5 of 21 observed); a controller
-    // or coupling that failed would leave most of them there.
-    constexpr int kMostClosest = 6;
+    // change, so some points spend their 40-period budget (5 to 6 of 21 observed, most at
+    // 3 g); a controller or coupling that failed would leave most of them there, so the bound
+    // is a third of the points.
+    constexpr int kMostClosest = 21 / 3;
     EXPECT_LE(summary.closest, kMostClosest);
 
     const auto recording = identification::read_recording(options.out_dir);
@@ -51,14 +53,18 @@ TEST(Campaign, ARealH0CampaignDampsWellAboveTheEmptyBeam) {
             << row.status << " at " << row.level_g << " g, " << row.frequency_hz << " Hz";
     }
     // "Well above": at least twice the empty beam's 0.5 % at 2 and 3 g, by every method that
-    // resolved the band (and at least one did at each level).
+    // resolved the band, and at least one did at each level. All three estimators count: on
+    // the short shipped grid the band at 3 g (about 2 % damping, 0.25 Hz) holds fewer points
+    // than half-power and the circle fit need, and they say so instead of returning a number.
     constexpr double kEmptyBeamDamping = 0.005;
+    const auto levels = identification::identify_recording(recording);
     for (double level : {2.0, 3.0}) {
         int found = 0;
-        for (const auto& row : recording.damping) {
-            if (row.level_g == level) {
-                EXPECT_GT(row.damping_ratio, 2.0 * kEmptyBeamDamping)
-                    << row.method << " at " << level << " g";
+        for (const auto& l : levels) {
+            if (l.level_g != level) continue;
+            for (const auto* e : {&l.half_power, &l.circle_fit, &l.rational_fraction}) {
+                if (!e->ok()) continue;
+                EXPECT_GT(e->damping_ratio, 2.0 * kEmptyBeamDamping) << "at " << level << " g";
                 ++found;
             }
         }

@@ -243,6 +243,7 @@ TEST(RecordingIo, TimeHistoryRoundTripsAndRejectsNonUniformSampling) {
         h.columns[1].push_back(std::cos(i * 0.3) / 3.0);
     }
     const auto p = fs::temp_directory_path() / "sb_identification_recording_test" / "series.csv";
+    fs::create_directories(p.parent_path());
     write_time_history_csv(p, h);
     const auto back = read_time_history_csv(p);
     EXPECT_EQ(back.columns, h.columns);
