@@ -250,7 +250,7 @@ void Solver::build_neighbors() {
     for (std::size_t i = 0; i < n; ++i) {
         cell_items_[cursor_[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
     }
-    const int used = threads_for(nt, n, 512);
+    const int used = threads_for(nt, n, grain());
     nbr_buffers_.resize(static_cast<std::size_t>(used));
     auto scan = [&](int t) {
         auto& buf = nbr_buffers_[static_cast<std::size_t>(t)];
@@ -326,7 +326,7 @@ void Solver::build_contacts() {
 
     std::swap(contacts_, prev_contacts_);
     std::swap(begin_, prev_begin_);
-    const int used = threads_for(nt, n, 512);
+    const int used = threads_for(nt, n, grain());
     thread_buffers_.resize(static_cast<std::size_t>(used));
     const auto nn = static_cast<std::uint32_t>(n);
 
@@ -385,7 +385,7 @@ void Solver::build_contacts() {
     // Carry the tangential history over from the previous step.
     if (has_history_ && !prev_contacts_.empty()) {
         const std::size_t pn = prev_begin_.size() - 1;
-        for_range(threads_for(nt, n, 1024), std::min(n, pn), [&](std::size_t i) {
+        for_range(threads_for(nt, n, 2 * grain()), std::min(n, pn), [&](std::size_t i) {
             // both segments are sorted by j: merge walk
             std::uint32_t q = prev_begin_[i];
             const std::uint32_t qe = prev_begin_[i + 1];
@@ -422,7 +422,7 @@ void Solver::compute_forces(const N& normal, const D& damping, const T& tangenti
     const int nt = thread_count();
     std::atomic<int> overlap{kNoParticle};
 
-    for_range(threads_for(nt, nc, 512), nc, [&](std::size_t s) {
+    for_range(threads_for(nt, nc, grain()), nc, [&](std::size_t s) {
         Contact& ct = contacts_[s];
         ContactResult& res = results_[s];
         const std::size_t i = ct.i;
@@ -510,7 +510,7 @@ void Solver::step(double dt) {
     const int nt = thread_count();
     const bool track = options_.track_energy;
     std::atomic<int> not_finite{kNoParticle};
-    for_range(threads_for(nt, n, 1024), n, [&](std::size_t i) {
+    for_range(threads_for(nt, n, 2 * grain()), n, [&](std::size_t i) {
         Eigen::Vector3d f = Eigen::Vector3d::Zero(), t = Eigen::Vector3d::Zero();
         Eigen::Vector3d wf = Eigen::Vector3d::Zero(), wm = Eigen::Vector3d::Zero();
         for (std::uint32_t k = begin_[i]; k < begin_[i + 1]; ++k) {
@@ -559,7 +559,7 @@ void Solver::step(double dt) {
         const std::size_t nc = contacts_.size();
         e_buf_.resize(4 * nc);
         const auto& es = enclosure_state_;
-        for_range(threads_for(nt, nc, 512), nc, [&](std::size_t k) {
+        for_range(threads_for(nt, nc, grain()), nc, [&](std::size_t k) {
             const Contact& ct = contacts_[k];
             const ContactResult& r = results_[k];
             const std::size_t i = ct.i;

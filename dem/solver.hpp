@@ -133,6 +133,7 @@ class Solver {
     void build_neighbors();
     void snap_locked(double dt);
     int thread_count() const;
+    std::size_t grain() const { return static_cast<std::size_t>(options_.parallel_grain); }
 
     SolverOptions options_;
     Enclosure enclosure_;
