@@ -138,6 +138,29 @@ Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
                 ? Eigen::Vector3d(enclosure_state_.rotation * particles.angular_velocities_rad_s[i])
                 : enclosure_state_.angular_velocity_rad_s;
     }
+    // Hertz radii of curvature against the curved walls (elliptical contacts, computed once
+    // per distinct radius): rods are convex, the cylinder side concave, the rest flat.
+    hertz_r_side_ = state_.radius;
+    hertz_r_rod_ = state_.radius;
+    if (std::holds_alternative<Hertz>(law_.normal)) {
+        const auto& eo = options_.enclosure;
+        double last_r = -1.0, last_side = 0.0, last_rod = 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+            const double r = state_.radius[i];
+            if (r != last_r) {
+                last_r = r;
+                last_side =
+                    eo.shape == EnclosureShape::cylinder
+                        ? hertz_equivalent_radius(r, 1.0 / (1.0 / r - 2.0 / eo.inner_diameter_m))
+                        : r;
+                last_rod = eo.rods.enabled ? hertz_equivalent_radius(
+                                                 r, 1.0 / (1.0 / r + 2.0 / eo.rods.rod_diameter_m))
+                                           : r;
+            }
+            hertz_r_side_[i] = last_side;
+            hertz_r_rod_[i] = last_rod;
+        }
+    }
     local_x_.resize(n);
     lock_local_.resize(n);
     v_old_.resize(n);
@@ -444,6 +467,7 @@ void Solver::compute_forces(const N& normal, const D& damping, const T& tangenti
             const double imi = state_.inv_mass[i], imj = state_.inv_mass[j];
             k.m_eff = 1.0 / (imi + imj);
             k.r_eff = ri * rj / (ri + rj);
+            k.r_hertz = k.r_eff;
             k.m_t = 1.0 / (3.5 * (imi + imj));
             k.i_eff = 1.0 / (state_.inv_inertia[i] + state_.inv_inertia[j]);
             k.omega_rel = state_.w[i] - state_.w[j];
@@ -452,6 +476,10 @@ void Solver::compute_forces(const N& normal, const D& damping, const T& tangenti
             vrel = state_.v[i] + state_.w[i].cross(bi) - es.velocity_at(xc);
             k.m_eff = 1.0 / state_.inv_mass[i];
             k.r_eff = ri;
+            const std::uint32_t wall_id = ct.j - nn;
+            k.r_hertz = wall_id >= kRodBase ? hertz_r_rod_[i]
+                        : wall_id == 0      ? hertz_r_side_[i]  // cylinder side (box: = ri)
+                                            : ri;
             k.m_t = 1.0 / (3.5 * state_.inv_mass[i]);
             k.i_eff = 1.0 / state_.inv_inertia[i];
             k.omega_rel = state_.w[i] - es.angular_velocity_rad_s;

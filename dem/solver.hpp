@@ -142,6 +142,7 @@ class Solver {
     EnclosureState enclosure_state_;
     ParticleState state_;
     std::vector<Eigen::Vector3d> local_x_, lock_local_;
+    std::vector<double> hertz_r_side_, hertz_r_rod_;  ///< Hertz R* on cylinder side, rods [m]
     double time_ = 0.0;
     std::int64_t step_ = 0;
     bool has_history_ = false;
