@@ -191,6 +191,34 @@ using DampingPiece = std::variant<NoDamping, LinearDashpot, HertzDashpot>;
 using TangentialPiece = std::variant<NoFriction, DirectionalCoulomb, CoulombSpring>;
 using RollingPiece = std::variant<NoRolling, ConstantRollingTorque>;
 
+/// What a composed law returns for one contact.
+struct LawForce {
+    double fn = 0.0;              ///< normal force, spring + damping clamped at 0 (no tension) [N]
+    double f_spring = 0.0;        ///< elastic part [N]
+    double k_law = 0.0;           ///< the normal law's constant
+    Eigen::Vector3d ft{0, 0, 0};  ///< tangential force on i [N]
+    Eigen::Vector3d mr{0, 0, 0};  ///< rolling torque on i [N m]
+};
+
+/// The four pieces of one step's law as concrete types (the variants visited once per step):
+/// everything below inlines into the contact loop.
+template <class N, class D, class T, class R>
+struct ComposedLaw {
+    static constexpr bool kHasHistory = T::kHasHistory;
+    N normal;
+    D damping;
+    T tangential;
+    R rolling;
+    LawForce evaluate(const ContactKinematics& k, const PairCoefficients& p,
+                      Eigen::Vector3d& history) const {
+        const NormalResult nr = normal.evaluate(k, p);
+        const double fd = damping.evaluate(k, p, nr);
+        const double fn = std::max(0.0, nr.f_spring + fd);  // no tensile force
+        return {fn, nr.f_spring, nr.k_law, tangential.evaluate(k, p, fn, nr, history),
+                rolling.evaluate(k, p, fn)};
+    }
+};
+
 /// A composed contact law.
 struct ContactLaw {
     NormalPiece normal{};

@@ -120,11 +120,10 @@ struct SolverOptions {
     /// (0 = rebuild every step).
     double neighbor_skin_fraction = 0.1;
     int threads = 1;  ///< OpenMP threads; 0 = OpenMP default
-    /// Smallest share of a loop one thread gets: a loop over n contacts (broad phase and
-    /// contact scans: n particles) runs on min(threads, n / parallel_grain) threads; the
-    /// lighter per-particle loops (gather and integration, history carry-over) use
-    /// 2 * parallel_grain. Below that the fixed cost of an OpenMP region (several us) exceeds
-    /// the gain. Results do not depend on it; lower it to exercise the parallel path.
+    /// Smallest number of particles per thread: every per-step loop (local positions, the
+    /// contact sweep, the broad phase) runs on min(threads, N / parallel_grain) threads, so
+    /// that small dampers run with no OpenMP region at all (its fixed cost, several us, would
+    /// exceed the gain). Results do not depend on it; lower it to exercise the parallel path.
     int parallel_grain = 512;
     bool track_energy = true;  ///< energy ledger each step
     int energy_layers = 0;     ///< dissipation per layer along local z (0 = off)
