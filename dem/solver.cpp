@@ -39,6 +39,13 @@ const char* kind_name(SimulationError::Kind k) {
 
 constexpr int kNoParticle = std::numeric_limits<int>::max();
 
+}  // namespace
+
+// Forces inlining of the per-particle kernels into the sweep loop.
+#define SB_ALWAYS_INLINE inline __attribute__((always_inline))
+
+namespace {
+
 /// Threads worth using for a loop of n items (at most kMaxChunks).
 int threads_for(int nt, std::size_t n, std::size_t grain) {
     const auto k = static_cast<int>(std::min<std::size_t>(n / grain, Solver::kMaxChunks));
@@ -163,6 +170,14 @@ Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
     wall_delta_.assign(n * wall_cap_, 0.0);
     wall_kl_.assign(n * wall_cap_, 0.0);
     has_obstacles_ = eo.rods.enabled || !eo.plates.empty();
+    lo_x_ = enclosure_.lower().x();
+    lo_y_ = enclosure_.lower().y();
+    lo_z_ = enclosure_.lower().z();
+    hi_x_ = enclosure_.upper().x();
+    hi_y_ = enclosure_.upper().y();
+    hi_z_ = enclosure_.upper().z();
+    track_energy_ = options_.track_energy;
+    gravity_ = options_.gravity_m_s2;
     cylinder_radius_ = eo.shape == EnclosureShape::cylinder ? 0.5 * eo.inner_diameter_m : 0.0;
 
     // Uniform grid in the enclosure frame, cell >= largest diameter.
@@ -321,7 +336,7 @@ void Solver::build_neighbors() {
     nbr_list_.clear();
     for (const auto& buf : nbr_buffers_) nbr_list_.insert(nbr_list_.end(), buf.begin(), buf.end());
     const std::size_t slots = nbr_list_.size();
-    pair_active_.assign(slots, 0);
+    pair_active_.assign(slots, PairFlag::apart);
     if (has_history_) pair_hist_.assign(slots, Eigen::Vector3d::Zero());
     pair_share_.resize(slots);
     pair_delta_.resize(slots);
@@ -332,8 +347,9 @@ void Solver::build_neighbors() {
             const std::uint32_t qe = old_nbr_begin_[i + 1];
             for (std::uint32_t k = nbr_begin_[i]; k < nbr_begin_[i + 1] && q < qe; ++k) {
                 while (q < qe && old_nbr_list_[q] < nbr_list_[k]) ++q;
-                if (q < qe && old_nbr_list_[q] == nbr_list_[k] && old_pair_active_[q]) {
-                    pair_active_[k] = 1;
+                if (q < qe && old_nbr_list_[q] == nbr_list_[k] &&
+                    old_pair_active_[q] == PairFlag::touching) {
+                    pair_active_[k] = PairFlag::touching;
                     if (has_history_) pair_hist_[k] = old_pair_hist_[q];
                 }
             }
@@ -371,68 +387,22 @@ void Solver::build_neighbors() {
     ++neighbor_builds_;
 }
 
-bool Solver::prepare_step() {
-    // Local positions (the pair distances do not change under the rigid frame motion, so the
-    // skin is measured in the enclosure frame), guard, largest displacement since the build.
-    const std::size_t n = state_.size();
-    const auto& es = enclosure_state_;
-    const bool have_list = !x_at_build_.empty();
-    const int used = threads_for(thread_count(), n, grain());
-    double disp2[kMaxChunks]{};
-    int outside[kMaxChunks];
-    auto pass = [&](int t) {
-        const std::size_t lo = n * static_cast<std::size_t>(t) / static_cast<std::size_t>(used);
-        const std::size_t hi = n * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(used);
-        double max_disp2 = 0.0;
-        int bad = kNoParticle;
-        for (std::size_t i = lo; i < hi; ++i) {
-            const Eigen::Vector3d xl = es.to_local(state_.x[i]);
-            local_x_[i] = xl;
-            if (!enclosure_.contains(xl) && bad == kNoParticle) bad = static_cast<int>(i);
-            if (have_list) max_disp2 = std::max(max_disp2, (xl - x_at_build_[i]).squaredNorm());
-        }
-        disp2[t] = max_disp2;
-        outside[t] = bad;
-    };
-    if (used == 1) {
-        pass(0);
-    } else {
-#pragma omp parallel num_threads(used)
-        pass(omp_get_thread_num());
-    }
-    double max_disp2 = 0.0;
-    for (int t = 0; t < used; ++t) {
-        if (outside[t] != kNoParticle) {
-            std::ostringstream msg;
-            msg << kind_name(SimulationError::Kind::outside) << ": particle " << outside[t]
-                << " at step " << step_ << ", t = " << time_ << " s";
-            throw SimulationError(SimulationError::Kind::outside, step_, time_, outside[t],
-                                  msg.str());
-        }
-        max_disp2 = std::max(max_disp2, disp2[t]);
-    }
-    return !have_list || 4.0 * max_disp2 >= skin_ * skin_;
-}
-
-bool Solver::deep_inside(const Eigen::Vector3d& xl, double r) const {
-    // Conservative: true only if Enclosure::for_each_contact would emit nothing (same
+SB_ALWAYS_INLINE bool Solver::deep_inside(const Eigen::Vector3d& xl, double r) const {
+    // Conservative: true only if Enclosure::for_each_contact would emit nothing (the same
     // comparisons on the flat walls, a margin on the cylinder side), so skipping it changes
     // no result. Obstacles are always tested.
     if (has_obstacles_) return false;
-    const Eigen::Vector3d& lo = enclosure_.lower();
-    const Eigen::Vector3d& hi = enclosure_.upper();
-    if (xl.z() - r < lo.z() || xl.z() + r > hi.z()) return false;
+    if (xl.z() - r < lo_z_ || xl.z() + r > hi_z_) return false;
     if (cylinder_radius_ > 0.0) {
         const double clear = cylinder_radius_ - r;
         return clear > 0.0 && xl.x() * xl.x() + xl.y() * xl.y() < clear * clear * (1.0 - 1e-9);
     }
-    return xl.x() - r >= lo.x() && xl.x() + r <= hi.x() && xl.y() - r >= lo.y() &&
-           xl.y() + r <= hi.y();
+    return xl.x() - r >= lo_x_ && xl.x() + r <= hi_x_ && xl.y() - r >= lo_y_ && xl.y() + r <= hi_y_;
 }
 
-template <class Law>
-Solver::Accumulated Solver::own_contacts(const Law& law, std::size_t i, double dt,
-                                         SweepLocal& loc) {
+template <class Law, bool kRotated>
+SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::size_t i, double dt,
+                                                          SweepLocal& loc) {
     const auto& es = enclosure_state_;
     const double frac = options_.max_overlap_fraction;
     const auto nn = static_cast<std::uint32_t>(state_.size());
@@ -444,14 +414,22 @@ Solver::Accumulated Solver::own_contacts(const Law& law, std::size_t i, double d
     {
         const PairCoefficients& p = coeff_[0];
         const std::uint32_t q_end = nbr_begin_[i + 1];
+        const Eigen::Vector3d* x = state_.x.data();
+        const double* radius = state_.radius.data();
+        PairFlag* active = pair_active_.data();
+        const std::uint32_t* list = nbr_list_.data();
+        const Eigen::Vector3d* v = state_.v.data();
+        const Eigen::Vector3d* w = state_.w.data();
+        const double* inv_mass = state_.inv_mass.data();
+        const double* inv_inertia = state_.inv_inertia.data();
         for (std::uint32_t q = nbr_begin_[i]; q < q_end; ++q) {
-            const std::uint32_t j = nbr_list_[q];
-            const Eigen::Vector3d d = xi - state_.x[j];
-            const double rj = state_.radius[j];
+            const std::uint32_t j = list[q];
+            const Eigen::Vector3d d = xi - x[j];
+            const double rj = radius[j];
             const double rs = ri + rj;
             const double d2 = d.squaredNorm();
             if (d2 >= rs * rs) {
-                pair_active_[q] = 0;
+                active[q] = PairFlag::apart;
                 continue;
             }
             const double dist = std::sqrt(d2);
@@ -460,23 +438,22 @@ Solver::Accumulated Solver::own_contacts(const Law& law, std::size_t i, double d
                 dist > 0.0 ? Eigen::Vector3d(d / dist) : Eigen::Vector3d(0.0, 0.0, 1.0);
             Eigen::Vector3d no_hist = Eigen::Vector3d::Zero();
             Eigen::Vector3d& hist = Law::kHasHistory ? pair_hist_[q] : no_hist;
-            if (Law::kHasHistory && !pair_active_[q]) hist.setZero();
-            pair_active_[q] = 1;
+            if (Law::kHasHistory && active[q] == PairFlag::apart) hist.setZero();
+            active[q] = PairFlag::touching;
             ContactKinematics k;
             k.delta = delta;
             k.n = n;
             k.dt = dt;
             const Eigen::Vector3d bi = -(ri - 0.5 * delta) * n;  // branch vector of i
             const Eigen::Vector3d bj = (rj - 0.5 * delta) * n;
-            const Eigen::Vector3d xc = xi + bi;
-            const Eigen::Vector3d vrel = vi + wi.cross(bi) - state_.v[j] - state_.w[j].cross(bj);
-            const double imj = state_.inv_mass[j];
+            const Eigen::Vector3d vrel = vi + wi.cross(bi) - v[j] - w[j].cross(bj);
+            const double imj = inv_mass[j];
             k.m_eff = 1.0 / (imi + imj);
             k.r_eff = ri * rj / (ri + rj);
             k.r_hertz = k.r_eff;
             k.m_t = 1.0 / (3.5 * (imi + imj));
-            k.i_eff = 1.0 / (iii + state_.inv_inertia[j]);
-            k.omega_rel = wi - state_.w[j];
+            k.i_eff = 1.0 / (iii + inv_inertia[j]);
+            k.omega_rel = wi - w[j];
             if (delta > frac * std::min(ri, rj)) overlap = true;
             const double vn = vrel.dot(n);
             k.delta_dot = -vn;
@@ -493,20 +470,25 @@ Solver::Accumulated Solver::own_contacts(const Law& law, std::size_t i, double d
             a.t += ti;
             ++loc.contacts;
             if (loc.log != nullptr) {
-                loc.log->push_back({static_cast<std::uint32_t>(i), j, delta, n, f, ti, xc,
+                loc.log->push_back({static_cast<std::uint32_t>(i), j, delta, n, f, ti, xi + bi,
                                     r.f_spring, r.fn - r.f_spring});
             }
         }
     }
-    // Walls and obstacles, matched by id with the previous step's for the history.
-    const std::size_t base = i * wall_cap_;
+    // Walls and obstacles in the enclosure frame, matched by id with the previous step's for
+    // the history.
+    const Eigen::Vector3d xl = kRotated ? es.to_local(xi) : Eigen::Vector3d(xi - es.position_m);
+    if (!enclosure_.contains(xl) && loc.outside == kNoParticle) {
+        loc.outside = static_cast<int>(i);
+    }
     std::uint32_t count = 0;
-    if (!deep_inside(local_x_[i], ri)) {
+    if (!deep_inside(xl, ri)) {
+        const std::size_t base = i * wall_cap_;
         const PairCoefficients& p = coeff_[1];
         const std::uint32_t prev_count = prev_wall_count_[i];
         std::uint32_t prev = 0;
         enclosure_.for_each_contact(
-            local_x_[i], ri, [&](std::uint32_t wall, const Eigen::Vector3d& nl, double delta) {
+            xl, ri, [&](std::uint32_t wall, const Eigen::Vector3d& nl, double delta) {
                 const std::size_t s = base + count++;
                 wall_id_[s] = wall;
                 Eigen::Vector3d no_hist = Eigen::Vector3d::Zero();
@@ -517,7 +499,7 @@ Solver::Accumulated Solver::own_contacts(const Law& law, std::size_t i, double d
                                ? prev_wall_hist_[base + prev]
                                : Eigen::Vector3d::Zero();
                 }
-                const Eigen::Vector3d n = es.rotate(nl);
+                const Eigen::Vector3d n = kRotated ? es.rotate(nl) : nl;
                 ContactKinematics k;
                 k.delta = delta;
                 k.n = n;
@@ -558,33 +540,44 @@ Solver::Accumulated Solver::own_contacts(const Law& law, std::size_t i, double d
     return a;
 }
 
-void Solver::finish_particle(std::size_t i, Accumulated a, double dt, SweepLocal& loc) {
+template <bool kRotated>
+SB_ALWAYS_INLINE void Solver::finish_particle(std::size_t i, const Accumulated& a, double dt,
+                                              SweepLocal& loc) {
     // Partner shares in slot order (fixed, whatever the thread count), then semi-implicit
     // Euler (paper 000).
     Eigen::Vector3d f = a.f, t = a.t;
-    for (std::uint32_t q = rev_begin_[i]; q < rev_begin_[i + 1]; ++q) {
-        const std::uint32_t slot = rev_slot_[q];
-        if (!pair_active_[slot]) continue;
-        f -= pair_share_[slot].f;
-        t += pair_share_[slot].tj;
+    const std::uint32_t* slots = rev_slot_.data();
+    const PairFlag* active = pair_active_.data();
+    const PairShare* share = pair_share_.data();
+    for (std::uint32_t q = rev_begin_[i], qe = rev_begin_[i + 1]; q < qe; ++q) {
+        const std::uint32_t slot = slots[q];
+        if (active[slot] == PairFlag::apart) continue;
+        f -= share[slot].f;
+        t += share[slot].tj;
     }
     Eigen::Vector3d& v = state_.v[i];
     Eigen::Vector3d& w = state_.w[i];
     Eigen::Vector3d& x = state_.x[i];
-    if (options_.track_energy) {
+    if (track_energy_) {
         v_old_[i] = v;
         w_old_[i] = w;
     }
-    v += dt * (state_.inv_mass[i] * f + options_.gravity_m_s2);
+    v += dt * (state_.inv_mass[i] * f + gravity_);
     w += (dt * state_.inv_inertia[i]) * t;
     x += dt * v;
     // one NaN or infinity anywhere makes the sum non-finite (cheaper than allFinite x3)
     if (!std::isfinite(x.sum() + v.sum() + w.sum()) && loc.not_finite == kNoParticle) {
         loc.not_finite = static_cast<int>(i);
     }
+    // Verlet criterion for the next step: pair distances are the same in any rigidly moving
+    // frame, so this step's enclosure frame measures the displacement since the build as
+    // well as the next one's.
+    const auto& es = enclosure_state_;
+    const Eigen::Vector3d xl = kRotated ? es.to_local(x) : Eigen::Vector3d(x - es.position_m);
+    loc.max_disp2 = std::max(loc.max_disp2, (xl - x_at_build_[i]).squaredNorm());
 }
 
-template <class Law>
+template <class Law, bool kRotated>
 void Solver::sweep(const Law& law, double dt) {
     const std::size_t n = state_.size();
     const int used = static_cast<int>(chunk_.size()) - 1;
@@ -592,23 +585,22 @@ void Solver::sweep(const Law& law, double dt) {
     std::swap(wall_id_, prev_wall_id_);
     if (has_history_) std::swap(wall_hist_, prev_wall_hist_);
     SweepLocal loc[kMaxChunks];
-    if (options_.track_energy) {
+    if (track_energy_) {
         logs_.resize(static_cast<std::size_t>(used));
         for (int t = 0; t < used; ++t) {
             logs_[static_cast<std::size_t>(t)].clear();
             loc[t].log = &logs_[static_cast<std::size_t>(t)];
         }
     }
-    wall_force_ = lock_force_;
-    wall_moment_ = lock_moment_;
+    Eigen::Vector3d wall_force = lock_force_, wall_moment = lock_moment_;
     if (used == 1) {
         // One pass: the pairs of i reach only j > i and the shares i receives come from
         // i' < i, already swept, so i is integrated in place right away.
         for (std::size_t i = 0; i < n; ++i) {
-            const Accumulated a = own_contacts(law, i, dt, loc[0]);
-            finish_particle(i, a, dt, loc[0]);
-            wall_force_ += a.wf;
-            wall_moment_ += a.wm;
+            const Accumulated a = own_contacts<Law, kRotated>(law, i, dt, loc[0]);
+            finish_particle<kRotated>(i, a, dt, loc[0]);
+            wall_force += a.wf;
+            wall_moment += a.wm;
         }
     } else {
         // Same arithmetic per particle in two phases: every particle's own contacts (reading
@@ -618,21 +610,34 @@ void Solver::sweep(const Law& law, double dt) {
             const int t = omp_get_thread_num();
             const std::size_t lo = chunk_[static_cast<std::size_t>(t)];
             const std::size_t hi = chunk_[static_cast<std::size_t>(t) + 1];
-            for (std::size_t i = lo; i < hi; ++i) own_[i] = own_contacts(law, i, dt, loc[t]);
+            for (std::size_t i = lo; i < hi; ++i) {
+                own_[i] = own_contacts<Law, kRotated>(law, i, dt, loc[t]);
+            }
 #pragma omp barrier
-            for (std::size_t i = lo; i < hi; ++i) finish_particle(i, own_[i], dt, loc[t]);
+            for (std::size_t i = lo; i < hi; ++i) finish_particle<kRotated>(i, own_[i], dt, loc[t]);
         }
         for (std::size_t i = 0; i < n; ++i) {
-            wall_force_ += own_[i].wf;
-            wall_moment_ += own_[i].wm;
+            wall_force += own_[i].wf;
+            wall_moment += own_[i].wm;
         }
     }
+    wall_force_ = wall_force;
+    wall_moment_ = wall_moment;
     contact_count_ = 0;
-    int overlap = kNoParticle, not_finite = kNoParticle;
+    max_disp2_ = 0.0;
+    int outside = kNoParticle, overlap = kNoParticle, not_finite = kNoParticle;
     for (int t = 0; t < used; ++t) {
         contact_count_ += loc[t].contacts;
+        max_disp2_ = std::max(max_disp2_, loc[t].max_disp2);
+        outside = std::min(outside, loc[t].outside);
         overlap = std::min(overlap, loc[t].overlap);
         not_finite = std::min(not_finite, loc[t].not_finite);
+    }
+    if (outside != kNoParticle) {
+        std::ostringstream msg;
+        msg << kind_name(SimulationError::Kind::outside) << ": particle " << outside << " at step "
+            << step_ << ", t = " << time_ << " s";
+        throw SimulationError(SimulationError::Kind::outside, step_, time_, outside, msg.str());
     }
     if (overlap != kNoParticle) {
         std::ostringstream msg;
@@ -654,8 +659,8 @@ void Solver::step(double dt) {
     if (!(dt > 0.0) || !std::isfinite(dt)) {
         throw std::invalid_argument("Solver::step: dt must be > 0, got " + format_value(dt));
     }
-    const bool any_locked = locked_count_ > 0;
-    if (any_locked && time_ >= options_.lock.release_time_s && options_.lock.release_time_s > 0) {
+    if (locked_count_ > 0 && time_ >= options_.lock.release_time_s &&
+        options_.lock.release_time_s > 0) {
         release();
     }
     if (locked_count_ > 0) {
@@ -664,16 +669,25 @@ void Solver::step(double dt) {
         lock_force_.setZero();
         lock_moment_.setZero();
     }
-    if (prepare_step()) build_neighbors();
+    if (x_at_build_.empty() || 4.0 * max_disp2_ >= skin_ * skin_) {
+        const auto& es = enclosure_state_;
+        for (std::size_t i = 0; i < state_.size(); ++i) local_x_[i] = es.to_local(state_.x[i]);
+        build_neighbors();
+    }
+    const bool rotated = enclosure_state_.rotation != Eigen::Matrix3d::Identity();
     std::visit(
         [&](const auto& nm, const auto& dm, const auto& tg, const auto& rl) {
-            sweep(
-                ComposedLaw<std::decay_t<decltype(nm)>, std::decay_t<decltype(dm)>,
-                            std::decay_t<decltype(tg)>, std::decay_t<decltype(rl)>>{nm, dm, tg, rl},
-                dt);
+            using L = ComposedLaw<std::decay_t<decltype(nm)>, std::decay_t<decltype(dm)>,
+                                  std::decay_t<decltype(tg)>, std::decay_t<decltype(rl)>>;
+            const L law{nm, dm, tg, rl};
+            if (rotated) {
+                sweep<L, true>(law, dt);
+            } else {
+                sweep<L, false>(law, dt);
+            }
         },
         law_.normal, law_.damping, law_.tangential, law_.rolling);
-    if (options_.track_energy) account_energy(dt);
+    if (track_energy_) account_energy(dt);
     time_ += dt;
     ++step_;
 }
@@ -758,7 +772,8 @@ EnergyLedger Solver::energy() const {
     if (step_ > 0) {
         for (std::size_t i = 0; i < state_.size(); ++i) {
             for (std::uint32_t q = nbr_begin_[i]; q < nbr_begin_[i + 1]; ++q) {
-                if (pair_active_[q]) e.elastic += spring(pair_kl_[q], pair_delta_[q]);
+                if (pair_active_[q] == PairFlag::touching)
+                    e.elastic += spring(pair_kl_[q], pair_delta_[q]);
             }
             for (std::uint32_t s = 0; s < wall_count_[i]; ++s) {
                 const std::size_t k = i * wall_cap_ + s;

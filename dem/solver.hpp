@@ -80,7 +80,8 @@ class Solver {
     void set_enclosure_state(const EnclosureState& state);
     const EnclosureState& enclosure_state() const { return enclosure_state_; }
 
-    /// One semi-implicit Euler step of dt [s]. Throws SimulationError if a guard fires.
+    /// One semi-implicit Euler step of dt [s]. Throws SimulationError if a guard fires; the
+    /// particles have then already been advanced (the run cannot continue).
     void step(double dt);
 
     /// Force exerted by the particles on the enclosure during the last step, world [N].
@@ -137,21 +138,24 @@ class Solver {
     /// Per-thread results of a sweep.
     struct SweepLocal {
         std::size_t contacts = 0;
+        double max_disp2 = 0.0;  ///< largest squared displacement since the list build
+        int outside = std::numeric_limits<int>::max();
         int overlap = std::numeric_limits<int>::max();
         int not_finite = std::numeric_limits<int>::max();
         std::vector<EnergyRecord>* log = nullptr;
     };
 
-    /// Local positions, outside guard; true if the Verlet list must be rebuilt.
-    bool prepare_step();
+    /// Verlet list from local_x_ (the enclosure-frame positions).
     void build_neighbors();
     /// True if the sphere (xl, r) certainly touches no wall (skips the wall tests).
     bool deep_inside(const Eigen::Vector3d& xl, double r) const;
-    template <class Law>
+    /// One step's contacts, forces, gather and update (kRotated: enclosure not axis-aligned).
+    template <class Law, bool kRotated>
     void sweep(const Law& law, double dt);
-    template <class Law>
+    template <class Law, bool kRotated>
     Accumulated own_contacts(const Law& law, std::size_t i, double dt, SweepLocal& loc);
-    void finish_particle(std::size_t i, Accumulated a, double dt, SweepLocal& loc);
+    template <bool kRotated>
+    void finish_particle(std::size_t i, const Accumulated& a, double dt, SweepLocal& loc);
     void account_energy(double dt);
     void snap_locked(double dt);
     int thread_count() const;
@@ -184,8 +188,11 @@ class Solver {
     std::vector<std::uint32_t> chunk_;  ///< thread t sweeps particles [chunk_[t], chunk_[t+1])
 
     // pair slots (one per Verlet entry) and the reverse index of the gather
-    std::vector<std::uint8_t> pair_active_, old_pair_active_;  ///< in contact this step
-    std::vector<Eigen::Vector3d> pair_hist_, old_pair_hist_;   ///< tangential history
+    /// Contact flag of a pair slot; an enum, not a char type, so that its stores cannot alias
+    /// the other arrays (which would force the hot loop to reload them).
+    enum class PairFlag : std::uint8_t { apart, touching };
+    std::vector<PairFlag> pair_active_, old_pair_active_;     ///< in contact this step
+    std::vector<Eigen::Vector3d> pair_hist_, old_pair_hist_;  ///< tangential history
     std::vector<PairShare> pair_share_;
     std::vector<double> pair_delta_, pair_kl_;  ///< overlap and law constant (elastic energy)
     std::vector<std::uint32_t> rev_begin_, rev_slot_;
@@ -193,7 +200,11 @@ class Solver {
     // wall slots: wall_cap_ per particle, current and previous step (for the history)
     std::size_t wall_cap_ = 0;
     bool has_obstacles_ = false;
-    double cylinder_radius_ = 0.0;  ///< 0 for a box
+    double cylinder_radius_ = 0.0;                                            ///< 0 for a box
+    double lo_x_ = 0, lo_y_ = 0, lo_z_ = 0, hi_x_ = 0, hi_y_ = 0, hi_z_ = 0;  ///< cavity bounds
+    bool track_energy_ = true;
+    Eigen::Vector3d gravity_ = Eigen::Vector3d::Zero();
+    double max_disp2_ = 0.0;  ///< at the end of the last step, since the list build
     std::vector<std::uint32_t> wall_count_, prev_wall_count_, wall_id_, prev_wall_id_;
     std::vector<Eigen::Vector3d> wall_hist_, prev_wall_hist_;
     std::vector<double> wall_delta_, wall_kl_;

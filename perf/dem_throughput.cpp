@@ -12,11 +12,14 @@
 //                           [--bed FILE] [--write-lammps-data FILE]
 // --bed (case b): settled bed cache; read if present, else settled and written.
 // --write-lammps-data: writes the initial state as a LAMMPS `atom_style sphere` data file
-// and exits. Prints one line `key=value ...` with particle-steps/s of the timed steps.
+// and exits; --lammps-vars 1 prints the matching `-var` arguments of validation/lammps/
+// in.damper (a) or in.box5000 (b) and exits. Otherwise prints one line `key=value ...` with
+// particle-steps/s of the timed steps.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -188,10 +191,30 @@ void write_lammps_data(const std::filesystem::path& path, const Case& c, const P
     return contacts;
 }
 
+/// LAMMPS `-var` arguments for the same law, excitation and step counts: damping
+/// eta = 2 zeta sqrt(k m*) with zeta from the restitution (no tensile force on both sides).
+std::string lammps_vars(const Case& c) {
+    const auto& o = c.options;
+    const double d = o.particles.diameter_m;
+    const double m = o.particles.material.density_kg_m3 * sb::kPi / 6.0 * d * d * d;
+    const double k = o.contact.normal_stiffness;
+    const double zeta = linear_zeta_from_restitution(o.contact.particle_particle.restitution);
+    const double zeta_w = linear_zeta_from_restitution(o.contact.particle_wall.restitution);
+    const double w = sb::kTwoPi * c.frequency_hz;
+    std::ostringstream v;
+    v << std::setprecision(12) << "-var dt " << c.dt_s << " -var warmup " << c.warmup_steps
+      << " -var steps " << c.steps << " -var kn " << k << " -var kt "
+      << o.contact.tangential_stiffness_ratio * k << " -var etapp "
+      << 2.0 * zeta * std::sqrt(k * 0.5 * m) << " -var etapw " << 2.0 * zeta_w * std::sqrt(k * m)
+      << " -var amp " << c.level_m_s2 / (w * w) << " -var omega " << w << " -var period "
+      << 1.0 / c.frequency_hz << " -var skin " << o.neighbor_skin_fraction * d;
+    return v.str();
+}
+
 [[noreturn]] void usage(const std::string& why) {
     std::cerr << "dem_throughput: " << why
               << "\nusage: dem_throughput a|b [--threads N] [--warmup STEPS] [--steps STEPS]"
-                 " [--ledger 0|1] [--bed FILE] [--write-lammps-data FILE]\n";
+                 " [--ledger 0|1] [--bed FILE] [--write-lammps-data FILE] [--lammps-vars 1]\n";
     std::exit(2);
 }
 
@@ -212,6 +235,7 @@ int main(int argc, char** argv) {
     int threads = 1;
     bool ledger = false;
     std::string bed, lammps_data;
+    bool print_lammps_vars = false;
     for (int k = 2; k < argc; ++k) {
         const std::string key = argv[k];
         if (k + 1 >= argc) usage(key + ": missing value");
@@ -226,6 +250,8 @@ int main(int argc, char** argv) {
             ledger = parse_long(key, value) != 0;
         } else if (key == "--bed") {
             bed = value;
+        } else if (key == "--lammps-vars") {
+            print_lammps_vars = parse_long(key, value) != 0;
         } else if (key == "--write-lammps-data") {
             lammps_data = value;
         } else {
@@ -234,6 +260,10 @@ int main(int argc, char** argv) {
     }
     c.options.threads = threads;
     c.options.track_energy = ledger;
+    if (print_lammps_vars) {
+        std::cout << lammps_vars(c) << '\n';
+        return 0;
+    }
 
     ParticleSet p;
     if (name == "a") {
@@ -256,15 +286,21 @@ int main(int argc, char** argv) {
             s.step(c.dt_s);
         }
         const auto t0 = std::chrono::steady_clock::now();
+        const std::clock_t cpu0 = std::clock();
         const double contacts = timed_steps(s, c, k);
+        // process CPU time (all threads): on a shared host it excludes the time the process
+        // waited for a core, which wall time does not
+        const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
         const double wall =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         const double n = static_cast<double>(p.positions_m.size());
         std::printf(
-            "case=%s threads=%d ledger=%d particles=%.0f steps=%ld wall_s=%.4f "
-            "us_per_step=%.4g particle_steps_per_s=%.4g mean_contacts=%.1f\n",
-            name.c_str(), threads, ledger ? 1 : 0, n, c.steps, wall,
+            "case=%s threads=%d ledger=%d particles=%.0f steps=%ld wall_s=%.4f cpu_s=%.4f "
+            "us_per_step=%.4g particle_steps_per_s=%.4g particle_steps_per_cpu_s=%.4g "
+            "mean_contacts=%.1f\n",
+            name.c_str(), threads, ledger ? 1 : 0, n, c.steps, wall, cpu,
             1e6 * wall / static_cast<double>(c.steps), n * static_cast<double>(c.steps) / wall,
+            n * static_cast<double>(c.steps) / cpu,
             contacts / static_cast<double>(std::max(1L, c.steps)));
     } catch (const std::exception& e) {
         std::fprintf(stderr, "dem_throughput: %s\n", e.what());
