@@ -149,12 +149,11 @@ class Solver {
     void build_neighbors();
     /// True if the sphere (xl, r) certainly touches no wall (skips the wall tests).
     bool deep_inside(const Eigen::Vector3d& xl, double r) const;
-    /// One step's contacts, forces, gather and update (kRotated: enclosure not axis-aligned).
-    template <class Law, bool kRotated>
+    /// One step's contacts, forces, gather and update.
+    template <class Law>
     void sweep(const Law& law, double dt);
-    template <class Law, bool kRotated>
+    template <class Law>
     Accumulated own_contacts(const Law& law, std::size_t i, double dt, SweepLocal& loc);
-    template <bool kRotated>
     void finish_particle(std::size_t i, const Accumulated& a, double dt, SweepLocal& loc);
     void account_energy(double dt);
     void snap_locked(double dt);
@@ -205,6 +204,7 @@ class Solver {
     bool track_energy_ = true;
     Eigen::Vector3d gravity_ = Eigen::Vector3d::Zero();
     double max_disp2_ = 0.0;  ///< at the end of the last step, since the list build
+    bool rotated_ = false;    ///< this step's enclosure rotation is not the identity
     std::vector<std::uint32_t> wall_count_, prev_wall_count_, wall_id_, prev_wall_id_;
     std::vector<Eigen::Vector3d> wall_hist_, prev_wall_hist_;
     std::vector<double> wall_delta_, wall_kl_;
