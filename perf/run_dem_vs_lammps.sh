@@ -44,7 +44,6 @@ lammps_rates() {  # log particles steps -> "wall_rate cpu_rate"
         END {printf "%.4g %.4g", n * s / loop, n * s / (loop * cpu / 100)}' "$1"
 }
 
-printf '%-34s %14s %14s %10s\n' "run" "p-steps/s" "p-steps/cpu-s" "peak RSS"
 report() {  # label wall cpu rss
     printf '%-34s %14s %14s %8s MB\n' "$1" "$2" "$3" "$4"
 }
@@ -86,6 +85,7 @@ run_case() {  # case threads
 }
 
 uptime
+printf '%-34s %14s %14s %10s\n' "run" "p-steps/s" "p-steps/cpu-s" "peak RSS"
 run_case a 1
 for t in $threads_b; do run_case b "$t"; done
 echo "logs and data: $work"
