@@ -1,6 +1,7 @@
 // Contact law composition and the restitution-to-damping relations.
 #include "dem/contact_law.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/units.hpp"
@@ -112,6 +113,35 @@ double hertz_restitution_from_alpha(double alpha) {
         if (v < 0.0 && (x <= 0.0 || acc(x, v) == 0.0)) break;
     }
     return -v;
+}
+
+double hertz_equivalent_radius(double r_x, double r_y) {
+    const double r_large = std::max(r_x, r_y), r_small = std::min(r_x, r_y);
+    const double ratio = r_large / r_small;  // = B / A >= 1
+    // Below this the contact is circular to double precision in R_e (R_e/sqrt(r_x r_y) - 1 is
+    // of order (ratio - 1)^2), and K - E would cancel.
+    if (ratio < 1.0 + 1e-6) return std::sqrt(r_x * r_y);
+    // B/A grows monotonically as b/a falls: bisect q = b/a on a log scale.
+    auto b_over_a = [](double q) {
+        const double m = 1.0 - q * q;  // e^2
+        const double e = std::sqrt(m);
+        const double kk = std::comp_ellint_1(e), ee = std::comp_ellint_2(e);
+        return (ee / (q * q) - kk) / (kk - ee);
+    };
+    double lo = std::log(1e-12), hi = 0.0;  // ln q
+    for (int it = 0; it < 200; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        if (b_over_a(std::exp(mid)) > ratio) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    const double q = std::exp(0.5 * (lo + hi));
+    const double e = std::sqrt(1.0 - q * q);
+    const double kk = std::comp_ellint_1(e), ee = std::comp_ellint_2(e);
+    const double a_plus_b = 0.5 / r_large + 0.5 / r_small;
+    return kPi * kPi * ee / (4.0 * a_plus_b * q * q * kk * kk * kk);
 }
 
 double hertz_alpha_from_restitution(double e) {

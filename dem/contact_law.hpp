@@ -20,10 +20,13 @@ struct ContactKinematics {
     Eigen::Vector3d v_t{0, 0, 0};        ///< slip velocity of i relative to j at the contact [m/s]
     Eigen::Vector3d omega_rel{0, 0, 0};  ///< omega_i - omega_j [rad/s]
     double m_eff = 0.0;                  ///< effective mass [kg]
-    double r_eff = 0.0;                  ///< effective radius [m]
-    double m_t = 0.0;                    ///< effective tangential mass at the contact point [kg]
-    double i_eff = 0.0;                  ///< effective rolling inertia [kg m^2]
-    double dt = 0.0;                     ///< time step [s]
+    double r_eff = 0.0;                  ///< effective radius R* (rolling lever arm) [m]
+    /// Effective radius of curvature of the Hertz contact [m]: R* for two spheres, from the
+    /// wall's curvature for walls (hertz_equivalent_radius).
+    double r_hertz = 0.0;
+    double m_t = 0.0;    ///< effective tangential mass at the contact point [kg]
+    double i_eff = 0.0;  ///< effective rolling inertia [kg m^2]
+    double dt = 0.0;     ///< time step [s]
 };
 
 /// Coefficients of one pair type, derived once at set-up.
@@ -57,11 +60,12 @@ struct Hooke {
     static double energy(double k, double delta) { return 0.5 * k * delta * delta; }
 };
 
-/// Hertz: F = k delta^{3/2}, k = 4/3 E* sqrt(R*) (paper 004 eqs. 3-4; Johnson 1985).
+/// Hertz: F = k delta^{3/2}, k = 4/3 E* sqrt(R*) (paper 004 eqs. 3-4; Johnson 1985), R* the
+/// effective radius of curvature of the contact (c.r_hertz).
 struct Hertz {
     static constexpr const char* kName = "hertz";
     NormalResult evaluate(const ContactKinematics& c, const PairCoefficients& p) const {
-        const double k = p.k_n > 0.0 ? p.k_n : p.e_star_sqrt_factor * std::sqrt(c.r_eff);
+        const double k = p.k_n > 0.0 ? p.k_n : p.e_star_sqrt_factor * std::sqrt(c.r_hertz);
         const double sd = std::sqrt(c.delta);
         return {k * c.delta * sd, k * sd, k};
     }
@@ -187,6 +191,34 @@ using DampingPiece = std::variant<NoDamping, LinearDashpot, HertzDashpot>;
 using TangentialPiece = std::variant<NoFriction, DirectionalCoulomb, CoulombSpring>;
 using RollingPiece = std::variant<NoRolling, ConstantRollingTorque>;
 
+/// What a composed law returns for one contact.
+struct LawForce {
+    double fn = 0.0;              ///< normal force, spring + damping clamped at 0 (no tension) [N]
+    double f_spring = 0.0;        ///< elastic part [N]
+    double k_law = 0.0;           ///< the normal law's constant
+    Eigen::Vector3d ft{0, 0, 0};  ///< tangential force on i [N]
+    Eigen::Vector3d mr{0, 0, 0};  ///< rolling torque on i [N m]
+};
+
+/// The four pieces of one step's law as concrete types (the variants visited once per step):
+/// everything below inlines into the contact loop.
+template <class N, class D, class T, class R>
+struct ComposedLaw {
+    static constexpr bool kHasHistory = T::kHasHistory;
+    N normal;
+    D damping;
+    T tangential;
+    R rolling;
+    LawForce evaluate(const ContactKinematics& k, const PairCoefficients& p,
+                      Eigen::Vector3d& history) const {
+        const NormalResult nr = normal.evaluate(k, p);
+        const double fd = damping.evaluate(k, p, nr);
+        const double fn = std::max(0.0, nr.f_spring + fd);  // no tensile force
+        return {fn, nr.f_spring, nr.k_law, tangential.evaluate(k, p, fn, nr, history),
+                rolling.evaluate(k, p, fn)};
+    }
+};
+
 /// A composed contact law.
 struct ContactLaw {
     NormalPiece normal{};
@@ -198,6 +230,19 @@ struct ContactLaw {
 
 /// Builds the law from options; incompatible pieces are reported as violations naming both.
 ContactLaw make_contact_law(const ContactOptions& options, Violations& violations);
+
+/// Effective radius R_e of a Hertz contact whose relative principal radii of curvature are
+/// r_x and r_y [m] (1/r = sum of both surfaces' curvatures in that direction, concave < 0),
+/// such that F = 4/3 E* sqrt(R_e) delta^{3/2} holds exactly. The contact is elliptical
+/// (semi-axes a >= b, eccentricity e): with A = 1/(2 r_large), B = 1/(2 r_small),
+/// B/A = ((a/b)^2 E(e) - K(e)) / (K(e) - E(e)), p0 = (A + B) E* b / E(e),
+/// delta = p0 b K(e) / E*, F = 2/3 pi a b p0 (Johnson, Contact Mechanics, 1985, eqs. 3.42
+/// and 3.46), hence R_e = pi^2 (a/b)^2 E(e) / (4 (A + B) K(e)^3). For r_x = r_y it is r_x
+/// (sphere); for r_large / r_small = 2 and 4 it is 1.02 and 1.08 times sqrt(r_x r_y).
+/// Examples: a sphere R on a rod R_rod: r_x = R (along the rod), r_y = 1/(1/R + 1/R_rod);
+/// inside a cylinder wall R_c: r_x = R (along the axis), r_y = 1/(1/R - 1/R_c).
+/// Solved by bisection at set-up (never per contact).
+double hertz_equivalent_radius(double r_x, double r_y);
 
 /// Restitution of the linear spring-dashpot with damping ratio zeta and no tensile force.
 double linear_restitution_from_zeta(double zeta);

@@ -159,6 +159,10 @@ Violations SolverOptions::validate() const {
     if (threads < 0) {
         out.push_back({"threads", std::to_string(threads), "must be >= 0", "OpenMP threads"});
     }
+    if (parallel_grain < 1) {
+        out.push_back({"parallel_grain", std::to_string(parallel_grain), "must be >= 1",
+                       "smallest loop share per OpenMP thread"});
+    }
     if (energy_layers < 0) {
         out.push_back({"energy_layers", std::to_string(energy_layers), "must be >= 0",
                        "number of layers for the dissipation per layer"});

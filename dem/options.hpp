@@ -102,7 +102,8 @@ struct EnclosureOptions {
 struct LockOptions {
     std::vector<int> particle_ids{};  ///< explicit set (enclosure-frame positions are frozen)
     double fraction = 0.0;            ///< else this share, lowest along local z first [-]
-    double release_time_s = 0.0;      ///< time at which all locked particles are freed [s]
+    /// Time at which all locked particles are freed [s]; 0 = never (they stay locked).
+    double release_time_s = 0.0;
     Violations validate() const;
 };
 
@@ -118,7 +119,12 @@ struct SolverOptions {
     /// rebuilt when a particle has moved more than half the skin in the enclosure frame
     /// (0 = rebuild every step).
     double neighbor_skin_fraction = 0.1;
-    int threads = 1;           ///< OpenMP threads; 0 = OpenMP default
+    int threads = 1;  ///< OpenMP threads; 0 = OpenMP default
+    /// Smallest number of particles per thread: every per-step loop (local positions, the
+    /// contact sweep, the broad phase) runs on min(threads, N / parallel_grain) threads, so
+    /// that small dampers run with no OpenMP region at all (its fixed cost, several us, would
+    /// exceed the gain). Results do not depend on it; lower it to exercise the parallel path.
+    int parallel_grain = 512;
     bool track_energy = true;  ///< energy ledger each step
     int energy_layers = 0;     ///< dissipation per layer along local z (0 = off)
     Violations validate() const;

@@ -5,11 +5,11 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 #include <numeric>
 #include <sstream>
+#include <type_traits>
 
 namespace sb::dem {
 
@@ -39,30 +39,22 @@ const char* kind_name(SimulationError::Kind k) {
 
 constexpr int kNoParticle = std::numeric_limits<int>::max();
 
-/// f(i) for i in [0, n): a plain loop for one thread (no OpenMP region at all: its fixed cost
-/// dominates small dampers), else a static OpenMP loop. f must not throw.
-template <class F>
-void for_range(int threads, std::size_t n, F&& f) {
-    if (threads <= 1) {
-        for (std::size_t i = 0; i < n; ++i) f(i);
-        return;
-    }
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::ptrdiff_t s = 0; s < static_cast<std::ptrdiff_t>(n); ++s) {
-        f(static_cast<std::size_t>(s));
-    }
-}
+}  // namespace
 
-/// Lowest offending particle id, safe to call from several threads.
-void flag_min(std::atomic<int>& flag, int id) {
-    int cur = flag.load(std::memory_order_relaxed);
-    while (id < cur && !flag.compare_exchange_weak(cur, id, std::memory_order_relaxed)) {
-    }
-}
+// Forces inlining of the per-particle kernels into the sweep loop (not under the sanitizers,
+// where the 36 instantiations of the inlined sweep make compilation far slower).
+#if defined(__SANITIZE_ADDRESS__)
+#define SB_ALWAYS_INLINE inline
+#else
+#define SB_ALWAYS_INLINE inline __attribute__((always_inline))
+#endif
 
-/// Threads worth using for a loop of n items.
+namespace {
+
+/// Threads worth using for a loop of n items (at most kMaxChunks).
 int threads_for(int nt, std::size_t n, std::size_t grain) {
-    return std::max(1, std::min(nt, static_cast<int>(n / grain)));
+    const auto k = static_cast<int>(std::min<std::size_t>(n / grain, Solver::kMaxChunks));
+    return std::max(1, std::min(nt, k));
 }
 
 }  // namespace
@@ -142,15 +134,60 @@ Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
                 ? Eigen::Vector3d(enclosure_state_.rotation * particles.angular_velocities_rad_s[i])
                 : enclosure_state_.angular_velocity_rad_s;
     }
+    const auto& eo = options_.enclosure;
+    // Hertz radii of curvature against the curved walls (elliptical contacts, computed once
+    // per distinct radius): rods are convex, the cylinder side concave, the rest flat.
+    hertz_r_side_ = state_.radius;
+    hertz_r_rod_ = state_.radius;
+    if (std::holds_alternative<Hertz>(law_.normal)) {
+        double last_r = -1.0, last_side = 0.0, last_rod = 0.0;
+        for (std::size_t i = 0; i < n; ++i) {
+            const double r = state_.radius[i];
+            if (r != last_r) {
+                last_r = r;
+                last_side =
+                    eo.shape == EnclosureShape::cylinder
+                        ? hertz_equivalent_radius(r, 1.0 / (1.0 / r - 2.0 / eo.inner_diameter_m))
+                        : r;
+                last_rod = eo.rods.enabled ? hertz_equivalent_radius(
+                                                 r, 1.0 / (1.0 / r + 2.0 / eo.rods.rod_diameter_m))
+                                           : r;
+            }
+            hertz_r_side_[i] = last_side;
+            hertz_r_rod_[i] = last_rod;
+        }
+    }
     local_x_.resize(n);
     lock_local_.resize(n);
-    v_old_.resize(n);
-    w_old_.resize(n);
-    pw_f_.resize(n);
-    pw_m_.resize(n);
-    begin_.assign(n + 1, 0);
-    prev_begin_.assign(n + 1, 0);
-    count_.assign(n, 0);
+    if (options_.track_energy) {
+        v_old_.resize(n);
+        w_old_.resize(n);
+    }
+    own_.resize(n);
+    // Wall slots per particle: every emitter of Enclosure::for_each_contact fires at most once
+    // per call (cylinder side/bottom/top or 6 box faces, each plate, the nearest rod per axis).
+    wall_cap_ = (eo.shape == EnclosureShape::cylinder ? 3 : 6) + eo.plates.size() +
+                (eo.rods.enabled ? 3 : 0);
+    wall_count_.assign(n, 0);
+    prev_wall_count_.assign(n, 0);
+    wall_id_.assign(n * wall_cap_, 0);
+    prev_wall_id_.assign(n * wall_cap_, 0);
+    if (has_history_) {
+        wall_hist_.assign(n * wall_cap_, Eigen::Vector3d::Zero());
+        prev_wall_hist_.assign(n * wall_cap_, Eigen::Vector3d::Zero());
+    }
+    wall_delta_.assign(n * wall_cap_, 0.0);
+    wall_kl_.assign(n * wall_cap_, 0.0);
+    has_obstacles_ = eo.rods.enabled || !eo.plates.empty();
+    lo_x_ = enclosure_.lower().x();
+    lo_y_ = enclosure_.lower().y();
+    lo_z_ = enclosure_.lower().z();
+    hi_x_ = enclosure_.upper().x();
+    hi_y_ = enclosure_.upper().y();
+    hi_z_ = enclosure_.upper().z();
+    track_energy_ = options_.track_energy;
+    gravity_ = options_.gravity_m_s2;
+    cylinder_radius_ = eo.shape == EnclosureShape::cylinder ? 0.5 * eo.inner_diameter_m : 0.0;
 
     // Uniform grid in the enclosure frame, cell >= largest diameter.
     double dmax = 0.0;
@@ -205,13 +242,15 @@ void Solver::lock(const std::vector<int>& ids) {
         state_.locked[i] = 1;
         lock_local_[i] = enclosure_state_.to_local(state_.x[i]);
     }
+    locked_count_ = static_cast<int>(std::count(state_.locked.begin(), state_.locked.end(), 1));
 }
 
-void Solver::release() { std::fill(state_.locked.begin(), state_.locked.end(), 0); }
-
-int Solver::locked_count() const {
-    return static_cast<int>(std::count(state_.locked.begin(), state_.locked.end(), 1));
+void Solver::release() {
+    std::fill(state_.locked.begin(), state_.locked.end(), 0);
+    locked_count_ = 0;
 }
+
+int Solver::locked_count() const { return locked_count_; }
 
 void Solver::snap_locked(double dt) {
     lock_force_.setZero();
@@ -243,7 +282,6 @@ void Solver::build_neighbors() {
     // then per particle the candidates j > i within r_i + r_j + skin, sorted by j.
     const std::size_t n = state_.size();
     const auto ncell = cell_start_.size() - 1;
-    const int nt = thread_count();
     const double inv_cell = 1.0 / cell_;
     for (std::size_t i = 0; i < n; ++i) {
         const Eigen::Vector3d& xl = local_x_[i];
@@ -262,8 +300,9 @@ void Solver::build_neighbors() {
     for (std::size_t i = 0; i < n; ++i) {
         cell_items_[cursor_[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
     }
-    const int used = threads_for(nt, n, 512);
+    const int used = threads_for(thread_count(), n, grain());
     nbr_buffers_.resize(static_cast<std::size_t>(used));
+    count_.resize(n);
     auto scan = [&](int t) {
         auto& buf = nbr_buffers_[static_cast<std::size_t>(t)];
         buf.clear();
@@ -303,195 +342,332 @@ void Solver::build_neighbors() {
 #pragma omp parallel num_threads(used)
         scan(omp_get_thread_num());
     }
+    // New list; the pair slots (contact flag and tangential history) follow their pairs.
+    std::swap(nbr_begin_, old_nbr_begin_);
+    std::swap(nbr_list_, old_nbr_list_);
+    std::swap(pair_active_, old_pair_active_);
+    std::swap(pair_hist_, old_pair_hist_);
     nbr_begin_.resize(n + 1);
     nbr_begin_[0] = 0;
     for (std::size_t i = 0; i < n; ++i) nbr_begin_[i + 1] = nbr_begin_[i] + count_[i];
     nbr_list_.clear();
     for (const auto& buf : nbr_buffers_) nbr_list_.insert(nbr_list_.end(), buf.begin(), buf.end());
+    const std::size_t slots = nbr_list_.size();
+    pair_active_.assign(slots, PairFlag::apart);
+    if (has_history_) pair_hist_.assign(slots, Eigen::Vector3d::Zero());
+    pair_share_.resize(slots);
+    pair_delta_.resize(slots);
+    pair_kl_.resize(slots);
+    if (!old_nbr_begin_.empty()) {
+        for (std::size_t i = 0; i < n; ++i) {  // both segments sorted by j: merge walk
+            std::uint32_t q = old_nbr_begin_[i];
+            const std::uint32_t qe = old_nbr_begin_[i + 1];
+            for (std::uint32_t k = nbr_begin_[i]; k < nbr_begin_[i + 1] && q < qe; ++k) {
+                while (q < qe && old_nbr_list_[q] < nbr_list_[k]) ++q;
+                if (q < qe && old_nbr_list_[q] == nbr_list_[k] &&
+                    old_pair_active_[q] == PairFlag::touching) {
+                    pair_active_[k] = PairFlag::touching;
+                    if (has_history_) pair_hist_[k] = old_pair_hist_[q];
+                }
+            }
+        }
+    }
+    // Reverse index: the slots where each particle is the partner j, in slot order (= the
+    // order of i), for the fixed-order gather.
+    rev_begin_.assign(n + 1, 0);
+    for (const std::uint32_t j : nbr_list_) ++rev_begin_[j + 1];
+    for (std::size_t i = 0; i < n; ++i) rev_begin_[i + 1] += rev_begin_[i];
+    rev_slot_.resize(slots);
+    cursor_.assign(rev_begin_.begin(), rev_begin_.end() - 1);
+    for (std::size_t q = 0; q < slots; ++q) {
+        rev_slot_[cursor_[nbr_list_[q]]++] = static_cast<std::uint32_t>(q);
+    }
+    // Thread chunks of about equal work (candidates + a per-particle share); the results do
+    // not depend on where they fall.
+    const int sweep_threads = threads_for(thread_count(), n, grain());
+    chunk_.assign(static_cast<std::size_t>(sweep_threads) + 1, 0);
+    chunk_.back() = static_cast<std::uint32_t>(n);
+    if (sweep_threads > 1) {
+        constexpr double kParticleWork = 4.0;  // walls and integration, in candidate units
+        const double total = static_cast<double>(slots) + kParticleWork * static_cast<double>(n);
+        std::size_t t = 1;
+        for (std::size_t i = 0; i < n && t < chunk_.size() - 1; ++i) {
+            const double done =
+                static_cast<double>(nbr_begin_[i]) + kParticleWork * static_cast<double>(i);
+            if (done >= total * static_cast<double>(t) / sweep_threads) {
+                chunk_[t++] = static_cast<std::uint32_t>(i);
+            }
+        }
+        for (; t < chunk_.size() - 1; ++t) chunk_[t] = static_cast<std::uint32_t>(n);
+    }
     x_at_build_ = local_x_;
     ++neighbor_builds_;
 }
 
-void Solver::build_contacts() {
-    const std::size_t n = state_.size();
-    const auto& es = enclosure_state_;
-    const int nt = thread_count();
-    std::atomic<int> outside{kNoParticle};
-
-    // Local positions (the pair distances do not change under the rigid frame motion, so the
-    // skin is measured in the enclosure frame), guard, largest displacement since the build.
-    double max_disp2 = 0.0;
-    const bool have_list = !x_at_build_.empty();
-    for (std::size_t i = 0; i < n; ++i) {
-        const Eigen::Vector3d xl = es.to_local(state_.x[i]);
-        local_x_[i] = xl;
-        if (!enclosure_.contains(xl)) flag_min(outside, static_cast<int>(i));
-        if (have_list) max_disp2 = std::max(max_disp2, (xl - x_at_build_[i]).squaredNorm());
+SB_ALWAYS_INLINE bool Solver::deep_inside(const Eigen::Vector3d& xl, double r) const {
+    // Conservative: true only if Enclosure::for_each_contact would emit nothing (the same
+    // comparisons on the flat walls, a margin on the cylinder side), so skipping it changes
+    // no result. Obstacles are always tested.
+    if (has_obstacles_) return false;
+    if (xl.z() - r < lo_z_ || xl.z() + r > hi_z_) return false;
+    if (cylinder_radius_ > 0.0) {
+        const double clear = cylinder_radius_ - r;
+        return clear > 0.0 && xl.x() * xl.x() + xl.y() * xl.y() < clear * clear * (1.0 - 1e-9);
     }
-    if (const int bad_outside = outside.load(); bad_outside != kNoParticle) {
-        std::ostringstream msg;
-        msg << kind_name(SimulationError::Kind::outside) << ": particle " << bad_outside
-            << " at step " << step_ << ", t = " << time_ << " s";
-        throw SimulationError(SimulationError::Kind::outside, step_, time_, bad_outside, msg.str());
-    }
-    if (!have_list || 4.0 * max_disp2 >= skin_ * skin_) build_neighbors();
-
-    std::swap(contacts_, prev_contacts_);
-    std::swap(begin_, prev_begin_);
-    const int used = threads_for(nt, n, 512);
-    thread_buffers_.resize(static_cast<std::size_t>(used));
-    const auto nn = static_cast<std::uint32_t>(n);
-
-    auto scan = [&](int t) {
-        auto& buf = thread_buffers_[static_cast<std::size_t>(t)];
-        buf.clear();
-        const std::size_t lo = n * static_cast<std::size_t>(t) / static_cast<std::size_t>(used);
-        const std::size_t hi = n * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(used);
-        for (std::size_t i = lo; i < hi; ++i) {
-            const std::size_t first = buf.size();
-            const Eigen::Vector3d& xi = state_.x[i];
-            const double ri = state_.radius[i];
-            for (std::uint32_t q = nbr_begin_[i]; q < nbr_begin_[i + 1]; ++q) {
-                const std::uint32_t j = nbr_list_[q];
-                const Eigen::Vector3d d = xi - state_.x[j];
-                const double rs = ri + state_.radius[j];
-                const double d2 = d.squaredNorm();
-                if (d2 >= rs * rs) continue;
-                const double dist = std::sqrt(d2);
-                Contact ct;
-                ct.i = static_cast<std::uint32_t>(i);
-                ct.j = j;
-                ct.delta = rs - dist;
-                ct.n = dist > 0.0 ? Eigen::Vector3d(d / dist) : Eigen::Vector3d(0.0, 0.0, 1.0);
-                buf.push_back(ct);
-            }
-            enclosure_.for_each_contact(
-                local_x_[i], ri, [&](std::uint32_t wall, const Eigen::Vector3d& nl, double dl) {
-                    Contact ct;
-                    ct.i = static_cast<std::uint32_t>(i);
-                    ct.j = nn + wall;
-                    ct.delta = dl;
-                    ct.n = es.rotate(nl);
-                    buf.push_back(ct);
-                });
-            count_[i] = static_cast<std::uint32_t>(buf.size() - first);
-        }
-    };
-    if (used == 1) {
-        scan(0);
-    } else {
-#pragma omp parallel num_threads(used)
-        scan(omp_get_thread_num());
-    }
-    // Concatenate in thread order = particle order.
-    begin_[0] = 0;
-    for (std::size_t i = 0; i < n; ++i) begin_[i + 1] = begin_[i] + count_[i];
-    contacts_.resize(begin_[n]);
-    {
-        std::size_t pos = 0;
-        for (auto& buf : thread_buffers_) {
-            std::copy(buf.begin(), buf.end(), contacts_.begin() + static_cast<std::ptrdiff_t>(pos));
-            pos += buf.size();
-        }
-    }
-    // Carry the tangential history over from the previous step.
-    if (has_history_ && !prev_contacts_.empty()) {
-        const std::size_t pn = prev_begin_.size() - 1;
-        for_range(threads_for(nt, n, 1024), std::min(n, pn), [&](std::size_t i) {
-            // both segments are sorted by j: merge walk
-            std::uint32_t q = prev_begin_[i];
-            const std::uint32_t qe = prev_begin_[i + 1];
-            for (std::uint32_t k = begin_[i]; k < begin_[i + 1] && q < qe; ++k) {
-                while (q < qe && prev_contacts_[q].j < contacts_[k].j) ++q;
-                if (q < qe && prev_contacts_[q].j == contacts_[k].j) {
-                    contacts_[k].hist = prev_contacts_[q].hist;
-                }
-            }
-        });
-    }
-    // Reverse index: contacts where the particle is j (pairs only), in contact order.
-    rev_begin_.assign(n + 1, 0);
-    for (const auto& ct : contacts_) {
-        if (ct.j < nn) ++rev_begin_[ct.j + 1];
-    }
-    for (std::size_t i = 0; i < n; ++i) rev_begin_[i + 1] += rev_begin_[i];
-    rev_list_.resize(rev_begin_[n]);
-    cursor_.assign(rev_begin_.begin(), rev_begin_.end() - 1);
-    for (std::size_t k = 0; k < contacts_.size(); ++k) {
-        const auto j = contacts_[k].j;
-        if (j < nn) rev_list_[cursor_[j]++] = static_cast<std::uint32_t>(k);
-    }
+    return xl.x() - r >= lo_x_ && xl.x() + r <= hi_x_ && xl.y() - r >= lo_y_ && xl.y() + r <= hi_y_;
 }
 
-template <class N, class D, class T, class R>
-void Solver::compute_forces(const N& normal, const D& damping, const T& tangential,
-                            const R& rolling, double dt) {
-    const std::size_t nc = contacts_.size();
-    results_.resize(nc);
-    const auto nn = static_cast<std::uint32_t>(state_.size());
+template <class Law>
+SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::size_t i, double dt,
+                                                          SweepLocal& loc) {
     const auto& es = enclosure_state_;
     const double frac = options_.max_overlap_fraction;
-    const int nt = thread_count();
-    std::atomic<int> overlap{kNoParticle};
-
-    for_range(threads_for(nt, nc, 512), nc, [&](std::size_t s) {
-        Contact& ct = contacts_[s];
-        ContactResult& res = results_[s];
-        const std::size_t i = ct.i;
-        const bool wall = ct.j >= nn;
-        const PairCoefficients& p = coeff_[wall ? 1 : 0];
-        const double ri = state_.radius[i];
-        ContactKinematics k;
-        k.delta = ct.delta;
-        k.n = ct.n;
-        k.dt = dt;
-        const Eigen::Vector3d bi = -(ri - 0.5 * ct.delta) * ct.n;  // branch vector of i
-        Eigen::Vector3d vrel, bj = Eigen::Vector3d::Zero();
-        const Eigen::Vector3d xc = state_.x[i] + bi;
-        if (!wall) {
-            const std::size_t j = ct.j;
-            const double rj = state_.radius[j];
-            bj = (rj - 0.5 * ct.delta) * ct.n;
-            vrel = state_.v[i] + state_.w[i].cross(bi) - state_.v[j] - state_.w[j].cross(bj);
-            const double imi = state_.inv_mass[i], imj = state_.inv_mass[j];
+    const auto nn = static_cast<std::uint32_t>(state_.size());
+    Accumulated a;
+    const Eigen::Vector3d xi = state_.x[i], vi = state_.v[i], wi = state_.w[i];
+    const double ri = state_.radius[i], imi = state_.inv_mass[i], iii = state_.inv_inertia[i];
+    bool overlap = false;
+    // Pairs: slots of i's Verlet list (j > i); the partner's share goes to the slot.
+    {
+        const PairCoefficients& p = coeff_[0];
+        const std::uint32_t q_end = nbr_begin_[i + 1];
+        const Eigen::Vector3d* x = state_.x.data();
+        const double* radius = state_.radius.data();
+        PairFlag* active = pair_active_.data();
+        const std::uint32_t* list = nbr_list_.data();
+        const Eigen::Vector3d* v = state_.v.data();
+        const Eigen::Vector3d* w = state_.w.data();
+        const double* inv_mass = state_.inv_mass.data();
+        const double* inv_inertia = state_.inv_inertia.data();
+        for (std::uint32_t q = nbr_begin_[i]; q < q_end; ++q) {
+            const std::uint32_t j = list[q];
+            const Eigen::Vector3d d = xi - x[j];
+            const double rj = radius[j];
+            const double rs = ri + rj;
+            const double d2 = d.squaredNorm();
+            if (d2 >= rs * rs) {
+                active[q] = PairFlag::apart;
+                continue;
+            }
+            const double dist = std::sqrt(d2);
+            const double delta = rs - dist;
+            const Eigen::Vector3d n =
+                dist > 0.0 ? Eigen::Vector3d(d / dist) : Eigen::Vector3d(0.0, 0.0, 1.0);
+            Eigen::Vector3d no_hist = Eigen::Vector3d::Zero();
+            Eigen::Vector3d& hist = Law::kHasHistory ? pair_hist_[q] : no_hist;
+            if (Law::kHasHistory && active[q] == PairFlag::apart) hist.setZero();
+            active[q] = PairFlag::touching;
+            ContactKinematics k;
+            k.delta = delta;
+            k.n = n;
+            k.dt = dt;
+            const Eigen::Vector3d bi = -(ri - 0.5 * delta) * n;  // branch vector of i
+            const Eigen::Vector3d bj = (rj - 0.5 * delta) * n;
+            const Eigen::Vector3d vrel = vi + wi.cross(bi) - v[j] - w[j].cross(bj);
+            const double imj = inv_mass[j];
             k.m_eff = 1.0 / (imi + imj);
             k.r_eff = ri * rj / (ri + rj);
+            k.r_hertz = k.r_eff;
             k.m_t = 1.0 / (3.5 * (imi + imj));
-            k.i_eff = 1.0 / (state_.inv_inertia[i] + state_.inv_inertia[j]);
-            k.omega_rel = state_.w[i] - state_.w[j];
-            if (ct.delta > frac * std::min(ri, rj)) flag_min(overlap, static_cast<int>(i));
-        } else {
-            vrel = state_.v[i] + state_.w[i].cross(bi) - es.velocity_at(xc);
-            k.m_eff = 1.0 / state_.inv_mass[i];
-            k.r_eff = ri;
-            k.m_t = 1.0 / (3.5 * state_.inv_mass[i]);
-            k.i_eff = 1.0 / state_.inv_inertia[i];
-            k.omega_rel = state_.w[i] - es.angular_velocity_rad_s;
-            if (ct.delta > frac * ri) flag_min(overlap, static_cast<int>(i));
+            k.i_eff = 1.0 / (iii + inv_inertia[j]);
+            k.omega_rel = wi - w[j];
+            if (delta > frac * std::min(ri, rj)) overlap = true;
+            const double vn = vrel.dot(n);
+            k.delta_dot = -vn;
+            k.v_t = vrel - vn * n;
+            const LawForce r = law.evaluate(k, p, hist);
+            const Eigen::Vector3d f = r.fn * n + r.ft;
+            const Eigen::Vector3d ti = bi.cross(r.ft) + r.mr;
+            PairShare& share = pair_share_[q];
+            share.f = f;
+            share.tj = bj.cross(-r.ft) - r.mr;
+            pair_delta_[q] = delta;
+            pair_kl_[q] = r.k_law;
+            a.f += f;
+            a.t += ti;
+            ++loc.contacts;
+            if (loc.log != nullptr) {
+                loc.log->push_back({static_cast<std::uint32_t>(i), j, delta, n, f, ti, xi + bi,
+                                    r.f_spring, r.fn - r.f_spring});
+            }
         }
-        const double vn = vrel.dot(ct.n);
-        k.delta_dot = -vn;
-        k.v_t = vrel - vn * ct.n;
-        const NormalResult nr = normal.evaluate(k, p);
-        const double fd = damping.evaluate(k, p, nr);
-        const double fn = std::max(0.0, nr.f_spring + fd);  // no tensile force
-        const Eigen::Vector3d ft = tangential.evaluate(k, p, fn, nr, ct.hist);
-        const Eigen::Vector3d mr = rolling.evaluate(k, p, fn);
-        res.f = fn * ct.n + ft;
-        res.ti = bi.cross(ft) + mr;
-        res.tj = wall ? Eigen::Vector3d((xc - es.position_m).cross(-res.f) - mr)
-                      : Eigen::Vector3d(bj.cross(-ft) - mr);
-        res.xc = xc;
-        res.fs = nr.f_spring;
-        res.fd = fn - nr.f_spring;
-        res.kl = nr.k_law;
-    });
-    if (const int bad_overlap = overlap.load(); bad_overlap != kNoParticle) {
+    }
+    // Walls and obstacles in the enclosure frame, matched by id with the previous step's for
+    // the history.
+    const Eigen::Vector3d xl = rotated_ ? es.to_local(xi) : Eigen::Vector3d(xi - es.position_m);
+    if (!enclosure_.contains(xl) && loc.outside == kNoParticle) {
+        loc.outside = static_cast<int>(i);
+    }
+    std::uint32_t count = 0;
+    if (!deep_inside(xl, ri)) {
+        const std::size_t base = i * wall_cap_;
+        const PairCoefficients& p = coeff_[1];
+        const std::uint32_t prev_count = prev_wall_count_[i];
+        std::uint32_t prev = 0;
+        enclosure_.for_each_contact(
+            xl, ri, [&](std::uint32_t wall, const Eigen::Vector3d& nl, double delta) {
+                const std::size_t s = base + count++;
+                wall_id_[s] = wall;
+                Eigen::Vector3d no_hist = Eigen::Vector3d::Zero();
+                Eigen::Vector3d& hist = Law::kHasHistory ? wall_hist_[s] : no_hist;
+                if constexpr (Law::kHasHistory) {
+                    while (prev < prev_count && prev_wall_id_[base + prev] < wall) ++prev;
+                    hist = prev < prev_count && prev_wall_id_[base + prev] == wall
+                               ? prev_wall_hist_[base + prev]
+                               : Eigen::Vector3d::Zero();
+                }
+                const Eigen::Vector3d n = rotated_ ? es.rotate(nl) : nl;
+                ContactKinematics k;
+                k.delta = delta;
+                k.n = n;
+                k.dt = dt;
+                const Eigen::Vector3d bi = -(ri - 0.5 * delta) * n;
+                const Eigen::Vector3d xc = xi + bi;
+                const Eigen::Vector3d vrel = vi + wi.cross(bi) - es.velocity_at(xc);
+                k.m_eff = 1.0 / imi;
+                k.r_eff = ri;
+                k.r_hertz = wall >= kRodBase ? hertz_r_rod_[i]
+                            : wall == 0      ? hertz_r_side_[i]  // cylinder side (box: = ri)
+                                             : ri;
+                k.m_t = 1.0 / (3.5 * imi);
+                k.i_eff = 1.0 / iii;
+                k.omega_rel = wi - es.angular_velocity_rad_s;
+                if (delta > frac * ri) overlap = true;
+                const double vn = vrel.dot(n);
+                k.delta_dot = -vn;
+                k.v_t = vrel - vn * n;
+                const LawForce r = law.evaluate(k, p, hist);
+                const Eigen::Vector3d f = r.fn * n + r.ft;
+                const Eigen::Vector3d ti = bi.cross(r.ft) + r.mr;
+                wall_delta_[s] = delta;
+                wall_kl_[s] = r.k_law;
+                a.f += f;
+                a.t += ti;
+                a.wf -= f;
+                a.wm += Eigen::Vector3d((xc - es.position_m).cross(-f) - r.mr);
+                ++loc.contacts;
+                if (loc.log != nullptr) {
+                    loc.log->push_back({static_cast<std::uint32_t>(i), nn + wall, delta, n, f, ti,
+                                        xc, r.f_spring, r.fn - r.f_spring});
+                }
+            });
+    }
+    wall_count_[i] = count;
+    if (overlap && loc.overlap == kNoParticle) loc.overlap = static_cast<int>(i);
+    return a;
+}
+
+SB_ALWAYS_INLINE void Solver::finish_particle(std::size_t i, const Accumulated& a, double dt,
+                                              SweepLocal& loc) {
+    // Partner shares in slot order (fixed, whatever the thread count), then semi-implicit
+    // Euler (paper 000).
+    Eigen::Vector3d f = a.f, t = a.t;
+    const std::uint32_t* slots = rev_slot_.data();
+    const PairFlag* active = pair_active_.data();
+    const PairShare* share = pair_share_.data();
+    for (std::uint32_t q = rev_begin_[i], qe = rev_begin_[i + 1]; q < qe; ++q) {
+        const std::uint32_t slot = slots[q];
+        if (active[slot] == PairFlag::apart) continue;
+        f -= share[slot].f;
+        t += share[slot].tj;
+    }
+    Eigen::Vector3d& v = state_.v[i];
+    Eigen::Vector3d& w = state_.w[i];
+    Eigen::Vector3d& x = state_.x[i];
+    if (track_energy_) {
+        v_old_[i] = v;
+        w_old_[i] = w;
+    }
+    v += dt * (state_.inv_mass[i] * f + gravity_);
+    w += (dt * state_.inv_inertia[i]) * t;
+    x += dt * v;
+    // one NaN or infinity anywhere makes the sum non-finite (cheaper than allFinite x3)
+    if (!std::isfinite(x.sum() + v.sum() + w.sum()) && loc.not_finite == kNoParticle) {
+        loc.not_finite = static_cast<int>(i);
+    }
+    // Verlet criterion for the next step: pair distances are the same in any rigidly moving
+    // frame, so this step's enclosure frame measures the displacement since the build as
+    // well as the next one's.
+    const auto& es = enclosure_state_;
+    const Eigen::Vector3d xl = rotated_ ? es.to_local(x) : Eigen::Vector3d(x - es.position_m);
+    loc.max_disp2 = std::max(loc.max_disp2, (xl - x_at_build_[i]).squaredNorm());
+}
+
+template <class Law>
+void Solver::sweep(const Law& law, double dt) {
+    const std::size_t n = state_.size();
+    const int used = static_cast<int>(chunk_.size()) - 1;
+    std::swap(wall_count_, prev_wall_count_);
+    std::swap(wall_id_, prev_wall_id_);
+    if (has_history_) std::swap(wall_hist_, prev_wall_hist_);
+    SweepLocal loc[kMaxChunks];
+    if (track_energy_) {
+        logs_.resize(static_cast<std::size_t>(used));
+        for (int t = 0; t < used; ++t) {
+            logs_[static_cast<std::size_t>(t)].clear();
+            loc[t].log = &logs_[static_cast<std::size_t>(t)];
+        }
+    }
+    Eigen::Vector3d wall_force = lock_force_, wall_moment = lock_moment_;
+    if (used == 1) {
+        // One pass: the pairs of i reach only j > i and the shares i receives come from
+        // i' < i, already swept, so i is integrated in place right away.
+        for (std::size_t i = 0; i < n; ++i) {
+            const Accumulated a = own_contacts<Law>(law, i, dt, loc[0]);
+            finish_particle(i, a, dt, loc[0]);
+            wall_force += a.wf;
+            wall_moment += a.wm;
+        }
+    } else {
+        // Same arithmetic per particle in two phases: every particle's own contacts (reading
+        // the start-of-step state only), a barrier, then the gather and the update.
+#pragma omp parallel num_threads(used)
+        {
+            const int t = omp_get_thread_num();
+            const std::size_t lo = chunk_[static_cast<std::size_t>(t)];
+            const std::size_t hi = chunk_[static_cast<std::size_t>(t) + 1];
+            for (std::size_t i = lo; i < hi; ++i) {
+                own_[i] = own_contacts<Law>(law, i, dt, loc[t]);
+            }
+#pragma omp barrier
+            for (std::size_t i = lo; i < hi; ++i) finish_particle(i, own_[i], dt, loc[t]);
+        }
+        for (std::size_t i = 0; i < n; ++i) {
+            wall_force += own_[i].wf;
+            wall_moment += own_[i].wm;
+        }
+    }
+    wall_force_ = wall_force;
+    wall_moment_ = wall_moment;
+    contact_count_ = 0;
+    max_disp2_ = 0.0;
+    int outside = kNoParticle, overlap = kNoParticle, not_finite = kNoParticle;
+    for (int t = 0; t < used; ++t) {
+        contact_count_ += loc[t].contacts;
+        max_disp2_ = std::max(max_disp2_, loc[t].max_disp2);
+        outside = std::min(outside, loc[t].outside);
+        overlap = std::min(overlap, loc[t].overlap);
+        not_finite = std::min(not_finite, loc[t].not_finite);
+    }
+    if (outside != kNoParticle) {
         std::ostringstream msg;
-        msg << kind_name(SimulationError::Kind::overlap) << " (" << frac
-            << " of the radius): particle " << bad_overlap << " at step " << step_
-            << ", t = " << time_ << " s";
-        throw SimulationError(SimulationError::Kind::overlap, step_, time_, bad_overlap, msg.str());
+        msg << kind_name(SimulationError::Kind::outside) << ": particle " << outside << " at step "
+            << step_ << ", t = " << time_ << " s";
+        throw SimulationError(SimulationError::Kind::outside, step_, time_, outside, msg.str());
+    }
+    if (overlap != kNoParticle) {
+        std::ostringstream msg;
+        msg << kind_name(SimulationError::Kind::overlap) << " (" << options_.max_overlap_fraction
+            << " of the radius): particle " << overlap << " at step " << step_ << ", t = " << time_
+            << " s";
+        throw SimulationError(SimulationError::Kind::overlap, step_, time_, overlap, msg.str());
+    }
+    if (not_finite != kNoParticle) {
+        std::ostringstream msg;
+        msg << kind_name(SimulationError::Kind::not_finite) << ": particle " << not_finite
+            << " at step " << step_ << ", t = " << time_ << " s";
+        throw SimulationError(SimulationError::Kind::not_finite, step_, time_, not_finite,
+                              msg.str());
     }
 }
 
@@ -499,96 +675,58 @@ void Solver::step(double dt) {
     if (!(dt > 0.0) || !std::isfinite(dt)) {
         throw std::invalid_argument("Solver::step: dt must be > 0, got " + format_value(dt));
     }
-    const bool any_locked = std::any_of(state_.locked.begin(), state_.locked.end(),
-                                        [](std::uint8_t l) { return l != 0; });
-    if (any_locked && time_ >= options_.lock.release_time_s && options_.lock.release_time_s > 0) {
+    if (locked_count_ > 0 && time_ >= options_.lock.release_time_s &&
+        options_.lock.release_time_s > 0) {
         release();
     }
-    if (any_locked) {
+    if (locked_count_ > 0) {
         snap_locked(dt);
     } else {
         lock_force_.setZero();
         lock_moment_.setZero();
     }
-    build_contacts();
-    std::visit([&](const auto& nm, const auto& dm, const auto& tg,
-                   const auto& rl) { compute_forces(nm, dm, tg, rl, dt); },
-               law_.normal, law_.damping, law_.tangential, law_.rolling);
-
-    // Gather per particle in a fixed order and integrate (semi-implicit Euler).
-    const std::size_t n = state_.size();
-    const auto nn = static_cast<std::uint32_t>(n);
-    const Eigen::Vector3d g = options_.gravity_m_s2;
-    const int nt = thread_count();
-    const bool track = options_.track_energy;
-    std::atomic<int> not_finite{kNoParticle};
-    for_range(threads_for(nt, n, 1024), n, [&](std::size_t i) {
-        Eigen::Vector3d f = Eigen::Vector3d::Zero(), t = Eigen::Vector3d::Zero();
-        Eigen::Vector3d wf = Eigen::Vector3d::Zero(), wm = Eigen::Vector3d::Zero();
-        for (std::uint32_t k = begin_[i]; k < begin_[i + 1]; ++k) {
-            const ContactResult& r = results_[k];
-            f += r.f;
-            t += r.ti;
-            if (contacts_[k].j >= nn) {
-                wf -= r.f;
-                wm += r.tj;
-            }
-        }
-        for (std::uint32_t q = rev_begin_[i]; q < rev_begin_[i + 1]; ++q) {
-            const ContactResult& r = results_[rev_list_[q]];
-            f -= r.f;
-            t += r.tj;
-        }
-        pw_f_[i] = wf;
-        pw_m_[i] = wm;
-        if (track) {
-            v_old_[i] = state_.v[i];
-            w_old_[i] = state_.w[i];
-        }
-        const double im = state_.inv_mass[i];
-        state_.v[i] += dt * (im * f + g);
-        state_.w[i] += (dt * state_.inv_inertia[i]) * t;
-        state_.x[i] += dt * state_.v[i];
-        // one NaN or infinity anywhere makes the sum non-finite (cheaper than allFinite x3)
-        if (!std::isfinite(state_.x[i].sum() + state_.v[i].sum() + state_.w[i].sum())) {
-            flag_min(not_finite, static_cast<int>(i));
-        }
-    });
-    if (const int bad = not_finite.load(); bad != kNoParticle) {
-        std::ostringstream msg;
-        msg << kind_name(SimulationError::Kind::not_finite) << ": particle " << bad << " at step "
-            << step_ << ", t = " << time_ << " s";
-        throw SimulationError(SimulationError::Kind::not_finite, step_, time_, bad, msg.str());
-    }
-    wall_force_ = lock_force_;
-    wall_moment_ = lock_moment_;
-    for (std::size_t i = 0; i < n; ++i) {
-        wall_force_ += pw_f_[i];
-        wall_moment_ += pw_m_[i];
-    }
-
-    if (options_.track_energy) {
-        const std::size_t nc = contacts_.size();
-        e_buf_.resize(4 * nc);
+    if (x_at_build_.empty() || 4.0 * max_disp2_ >= skin_ * skin_) {
         const auto& es = enclosure_state_;
-        for_range(threads_for(nt, nc, 512), nc, [&](std::size_t k) {
-            const Contact& ct = contacts_[k];
-            const ContactResult& r = results_[k];
-            const std::size_t i = ct.i;
-            const bool wall = ct.j >= nn;
+        for (std::size_t i = 0; i < state_.size(); ++i) local_x_[i] = es.to_local(state_.x[i]);
+        build_neighbors();
+    }
+    // axis-aligned enclosure (the usual shaker set-up): local = world - origin
+    rotated_ = enclosure_state_.rotation != Eigen::Matrix3d::Identity();
+    std::visit(
+        [&](const auto& nm, const auto& dm, const auto& tg, const auto& rl) {
+            using L = ComposedLaw<std::decay_t<decltype(nm)>, std::decay_t<decltype(dm)>,
+                                  std::decay_t<decltype(tg)>, std::decay_t<decltype(rl)>>;
+            const L law{nm, dm, tg, rl};
+            sweep(law, dt);
+        },
+        law_.normal, law_.damping, law_.tangential, law_.rolling);
+    if (track_energy_) account_energy(dt);
+    time_ += dt;
+    ++step_;
+}
+
+void Solver::account_energy(double dt) {
+    // Per contact with the mid-step velocities (after the update), then summed in contact
+    // order (the thread logs are in particle order).
+    const auto nn = static_cast<std::uint32_t>(state_.size());
+    const auto& es = enclosure_state_;
+    auto work = [&](std::vector<EnergyRecord>& log) {
+        for (EnergyRecord& r : log) {
+            const std::size_t i = r.i;
+            const bool wall = r.j >= nn;
             const Eigen::Vector3d vi = 0.5 * (v_old_[i] + state_.v[i]);
             const Eigen::Vector3d wi = 0.5 * (w_old_[i] + state_.w[i]);
             const Eigen::Vector3d bi = r.xc - (state_.x[i] - dt * state_.v[i]);
             Eigen::Vector3d vrel, wrel;
             double wall_work = 0.0;
             const double fn = r.fs + r.fd;
-            const Eigen::Vector3d ft = r.f - fn * ct.n;
+            const Eigen::Vector3d ft = r.f - fn * r.n;
             const Eigen::Vector3d mr = r.ti - bi.cross(ft);
             if (!wall) {
-                const std::size_t j = ct.j;
+                const std::size_t j = r.j;
                 const Eigen::Vector3d vj = 0.5 * (v_old_[j] + state_.v[j]);
                 const Eigen::Vector3d wj = 0.5 * (w_old_[j] + state_.w[j]);
-                const Eigen::Vector3d bj = (state_.radius[j] - 0.5 * ct.delta) * ct.n;
+                const Eigen::Vector3d bj = (state_.radius[j] - 0.5 * r.delta) * r.n;
                 vrel = vi + wi.cross(bi) - vj - wj.cross(bj);
                 wrel = wi - wj;
             } else {
@@ -597,30 +735,36 @@ void Solver::step(double dt) {
                 wrel = wi - es.angular_velocity_rad_s;
                 wall_work = (r.f.dot(vw) + mr.dot(es.angular_velocity_rad_s)) * dt;
             }
-            const double vn = vrel.dot(ct.n);
-            e_buf_[4 * k + 0] = wall_work;
-            e_buf_[4 * k + 1] = r.fd * (-vn) * dt;
-            e_buf_[4 * k + 2] = -ft.dot(vrel - vn * ct.n) * dt;
-            e_buf_[4 * k + 3] = -mr.dot(wrel) * dt;
-        });
-        const int layers = options_.energy_layers;
-        const double lz = enclosure_.lower().z();
-        const double hz = enclosure_.upper().z() - lz;
-        for (std::size_t k = 0; k < nc; ++k) {
-            ledger_.wall_work += e_buf_[4 * k + 0];
-            ledger_.normal_damping += e_buf_[4 * k + 1];
-            ledger_.friction += e_buf_[4 * k + 2];
-            ledger_.rolling += e_buf_[4 * k + 3];
+            const double vn = vrel.dot(r.n);
+            r.e[0] = wall_work;
+            r.e[1] = r.fd * (-vn) * dt;
+            r.e[2] = -ft.dot(vrel - vn * r.n) * dt;
+            r.e[3] = -mr.dot(wrel) * dt;
+        }
+    };
+    const int used = static_cast<int>(logs_.size());
+    if (used == 1) {
+        work(logs_[0]);
+    } else {
+#pragma omp parallel num_threads(used)
+        work(logs_[static_cast<std::size_t>(omp_get_thread_num())]);
+    }
+    const int layers = options_.energy_layers;
+    const double lz = enclosure_.lower().z();
+    const double hz = enclosure_.upper().z() - lz;
+    for (const auto& log : logs_) {
+        for (const EnergyRecord& r : log) {
+            ledger_.wall_work += r.e[0];
+            ledger_.normal_damping += r.e[1];
+            ledger_.friction += r.e[2];
+            ledger_.rolling += r.e[3];
             if (layers > 0) {
-                const double z = es.to_local(results_[k].xc).z();
+                const double z = es.to_local(r.xc).z();
                 const int l = std::clamp(static_cast<int>((z - lz) / hz * layers), 0, layers - 1);
-                ledger_.layer_dissipation[static_cast<std::size_t>(l)] +=
-                    e_buf_[4 * k + 1] + e_buf_[4 * k + 2] + e_buf_[4 * k + 3];
+                ledger_.layer_dissipation[static_cast<std::size_t>(l)] += r.e[1] + r.e[2] + r.e[3];
             }
         }
     }
-    time_ += dt;
-    ++step_;
 }
 
 EnergyLedger Solver::energy() const {
@@ -633,10 +777,22 @@ EnergyLedger Solver::energy() const {
         e.kinetic_rotational += 0.5 / state_.inv_inertia[i] * state_.w[i].squaredNorm();
         e.potential -= m * g.dot(state_.x[i]);
     }
+    // Springs of the last step's contacts, in contact order (per particle: pairs, walls).
     const bool hertz = std::holds_alternative<Hertz>(law_.normal);
-    for (std::size_t k = 0; k < contacts_.size() && k < results_.size(); ++k) {
-        const double d = contacts_[k].delta, kl = results_[k].kl;
-        e.elastic += hertz ? Hertz::energy(kl, d) : Hooke::energy(kl, d);
+    auto spring = [hertz](double kl, double d) {
+        return hertz ? Hertz::energy(kl, d) : Hooke::energy(kl, d);
+    };
+    if (step_ > 0) {
+        for (std::size_t i = 0; i < state_.size(); ++i) {
+            for (std::uint32_t q = nbr_begin_[i]; q < nbr_begin_[i + 1]; ++q) {
+                if (pair_active_[q] == PairFlag::touching)
+                    e.elastic += spring(pair_kl_[q], pair_delta_[q]);
+            }
+            for (std::uint32_t s = 0; s < wall_count_[i]; ++s) {
+                const std::size_t k = i * wall_cap_ + s;
+                e.elastic += spring(wall_kl_[k], wall_delta_[k]);
+            }
+        }
     }
     return e;
 }

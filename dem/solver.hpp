@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -79,7 +80,8 @@ class Solver {
     void set_enclosure_state(const EnclosureState& state);
     const EnclosureState& enclosure_state() const { return enclosure_state_; }
 
-    /// One semi-implicit Euler step of dt [s]. Throws SimulationError if a guard fires.
+    /// One semi-implicit Euler step of dt [s]. Throws SimulationError if a guard fires; the
+    /// particles have then already been advanced (the run cannot continue).
     void step(double dt);
 
     /// Force exerted by the particles on the enclosure during the last step, world [N].
@@ -96,7 +98,8 @@ class Solver {
     ParticleSet local_snapshot() const;
     double time() const { return time_; }
     std::int64_t step_count() const { return step_; }
-    std::size_t contact_count() const { return contacts_.size(); }
+    /// Contacts (pairs and walls) of the last step.
+    std::size_t contact_count() const { return contact_count_; }
     /// Number of neighbour-list (broad phase) rebuilds so far.
     std::int64_t neighbor_builds() const { return neighbor_builds_; }
     const ContactLaw& law() const { return law_; }
@@ -110,29 +113,52 @@ class Solver {
     void release();
     int locked_count() const;
 
-    struct Contact {
-        std::uint32_t i = 0, j = 0;  ///< j >= N: wall id j - N
-        double delta = 0.0;
-        Eigen::Vector3d n{0, 0, 1};
-        Eigen::Vector3d hist{0, 0, 0};
-    };
-    struct ContactResult {
-        Eigen::Vector3d f{0, 0, 0};   ///< force on i [N]
-        Eigen::Vector3d ti{0, 0, 0};  ///< torque on i [N m]
-        Eigen::Vector3d tj{0, 0, 0};  ///< torque on j, or wall moment about origin [N m]
-        Eigen::Vector3d xc{0, 0, 0};  ///< contact point [m]
-        double fs = 0.0, fd = 0.0;    ///< spring and (clamped) damping normal force [N]
-        double kl = 0.0;              ///< law constant (for elastic energy)
-    };
+    /// Most threads one solver uses (options.threads above this are capped).
+    static constexpr std::size_t kMaxChunks = 64;
 
   private:
-    template <class N, class D, class T, class R>
-    void compute_forces(const N& normal, const D& damping, const T& tangential, const R& rolling,
-                        double dt);
-    void build_contacts();
+    /// What pair slot q of i's Verlet list hands to its partner j.
+    struct PairShare {
+        Eigen::Vector3d f{0, 0, 0};   ///< force on i (j receives -f) [N]
+        Eigen::Vector3d tj{0, 0, 0};  ///< torque on j [N m]
+    };
+    /// One contact of the step, for the energy ledger (filled only when it is on).
+    struct EnergyRecord {
+        std::uint32_t i = 0, j = 0;  ///< j >= N: wall
+        double delta = 0.0;
+        Eigen::Vector3d n, f, ti, xc;  ///< normal, force and torque on i, contact point
+        double fs = 0.0, fd = 0.0;     ///< spring and (clamped) damping normal force [N]
+        double e[4]{};                 ///< wall work, normal damping, friction, rolling [J]
+    };
+    /// Sums over a particle's own contacts.
+    struct Accumulated {
+        Eigen::Vector3d f = Eigen::Vector3d::Zero(), t = Eigen::Vector3d::Zero();
+        Eigen::Vector3d wf = Eigen::Vector3d::Zero(), wm = Eigen::Vector3d::Zero();
+    };
+    /// Per-thread results of a sweep.
+    struct SweepLocal {
+        std::size_t contacts = 0;
+        double max_disp2 = 0.0;  ///< largest squared displacement since the list build
+        int outside = std::numeric_limits<int>::max();
+        int overlap = std::numeric_limits<int>::max();
+        int not_finite = std::numeric_limits<int>::max();
+        std::vector<EnergyRecord>* log = nullptr;
+    };
+
+    /// Verlet list from local_x_ (the enclosure-frame positions).
     void build_neighbors();
+    /// True if the sphere (xl, r) certainly touches no wall (skips the wall tests).
+    bool deep_inside(const Eigen::Vector3d& xl, double r) const;
+    /// One step's contacts, forces, gather and update.
+    template <class Law>
+    void sweep(const Law& law, double dt);
+    template <class Law>
+    Accumulated own_contacts(const Law& law, std::size_t i, double dt, SweepLocal& loc);
+    void finish_particle(std::size_t i, const Accumulated& a, double dt, SweepLocal& loc);
+    void account_energy(double dt);
     void snap_locked(double dt);
     int thread_count() const;
+    std::size_t grain() const { return static_cast<std::size_t>(options_.parallel_grain); }
 
     SolverOptions options_;
     Enclosure enclosure_;
@@ -141,38 +167,58 @@ class Solver {
     EnclosureState enclosure_state_;
     ParticleState state_;
     std::vector<Eigen::Vector3d> local_x_, lock_local_;
+    std::vector<double> hertz_r_side_, hertz_r_rod_;  ///< Hertz R* on cylinder side, rods [m]
     double time_ = 0.0;
     std::int64_t step_ = 0;
     bool has_history_ = false;
+    int locked_count_ = 0;
+    std::size_t contact_count_ = 0;
 
-    // broad phase
+    // broad phase: uniform grid in the enclosure frame, Verlet list (j > i, sorted by j)
     Eigen::Vector3d grid_lo_;
     double cell_ = 0.0;
     int dims_[3]{1, 1, 1};
-    std::vector<std::uint32_t> cell_of_, cell_start_, cell_items_;
+    std::vector<std::uint32_t> cell_of_, cell_start_, cell_items_, cursor_, count_;
     double skin_ = 0.0;
-    std::vector<std::uint32_t> nbr_begin_, nbr_list_;
+    std::vector<std::uint32_t> nbr_begin_, nbr_list_, old_nbr_begin_, old_nbr_list_;
     std::vector<std::vector<std::uint32_t>> nbr_buffers_;
     std::vector<Eigen::Vector3d> x_at_build_;
     std::int64_t neighbor_builds_ = 0;
+    std::vector<std::uint32_t> chunk_;  ///< thread t sweeps particles [chunk_[t], chunk_[t+1])
 
-    // contacts (i-major), previous step's for the history, reverse index for gather
-    std::vector<Contact> contacts_, prev_contacts_;
-    std::vector<ContactResult> results_;
-    std::vector<std::uint32_t> begin_, prev_begin_, rev_begin_, rev_list_;
-    std::vector<std::vector<Contact>> thread_buffers_;
-    std::vector<std::uint32_t> count_, cursor_;
+    // pair slots (one per Verlet entry) and the reverse index of the gather
+    /// Contact flag of a pair slot; an enum, not a char type, so that its stores cannot alias
+    /// the other arrays (which would force the hot loop to reload them).
+    enum class PairFlag : std::uint8_t { apart, touching };
+    std::vector<PairFlag> pair_active_, old_pair_active_;     ///< in contact this step
+    std::vector<Eigen::Vector3d> pair_hist_, old_pair_hist_;  ///< tangential history
+    std::vector<PairShare> pair_share_;
+    std::vector<double> pair_delta_, pair_kl_;  ///< overlap and law constant (elastic energy)
+    std::vector<std::uint32_t> rev_begin_, rev_slot_;
 
+    // wall slots: wall_cap_ per particle, current and previous step (for the history)
+    std::size_t wall_cap_ = 0;
+    bool has_obstacles_ = false;
+    double cylinder_radius_ = 0.0;                                            ///< 0 for a box
+    double lo_x_ = 0, lo_y_ = 0, lo_z_ = 0, hi_x_ = 0, hi_y_ = 0, hi_z_ = 0;  ///< cavity bounds
+    bool track_energy_ = true;
+    Eigen::Vector3d gravity_ = Eigen::Vector3d::Zero();
+    double max_disp2_ = 0.0;  ///< at the end of the last step, since the list build
+    bool rotated_ = false;    ///< this step's enclosure rotation is not the identity
+    std::vector<std::uint32_t> wall_count_, prev_wall_count_, wall_id_, prev_wall_id_;
+    std::vector<Eigen::Vector3d> wall_hist_, prev_wall_hist_;
+    std::vector<double> wall_delta_, wall_kl_;
+
+    std::vector<Accumulated> own_;  ///< per particle, between the two parallel phases
     std::vector<Eigen::Vector3d> v_old_, w_old_;
     Eigen::Vector3d wall_force_ = Eigen::Vector3d::Zero();
     Eigen::Vector3d wall_moment_ = Eigen::Vector3d::Zero();
     Eigen::Vector3d lock_force_ = Eigen::Vector3d::Zero();
     Eigen::Vector3d lock_moment_ = Eigen::Vector3d::Zero();
-    std::vector<Eigen::Vector3d> pw_f_, pw_m_;
 
     // energy
     EnergyLedger ledger_;
-    std::vector<double> e_buf_;
+    std::vector<std::vector<EnergyRecord>> logs_;  ///< per thread, in particle order
 };
 
 }  // namespace sb::dem

@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(build-essential cmake pkg-config libeigen3-dev libfftw3-dev libnlopt-cxx-dev
           libtomlplusplus-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev)
 if [[ "${1:-}" == "--test" ]]; then
-    packages+=(clang-format lammps gnuplot-nox)
+    packages+=(clang-format lammps gnuplot-nox time)
 fi
 
 missing=()

@@ -147,3 +147,50 @@ TEST(ConstantRollingTorque, OpposesTheRelativeRollingAndIgnoresTwist) {
 
 }  // namespace
 }  // namespace sb::dem
+
+namespace sb::dem {
+namespace {
+
+/// Bisection to 200 halvings of ln(b/a) and std::comp_ellint_*: far below this.
+constexpr double kEquivalentRadiusTolerance = 1e-9;
+
+TEST(HertzEquivalentRadius, IsTheSphereRadiusForEqualCurvatures) {
+    EXPECT_DOUBLE_EQ(hertz_equivalent_radius(1.5e-3, 1.5e-3), 1.5e-3);
+    EXPECT_NEAR(hertz_equivalent_radius(1.5e-3, 1.5e-3 * (1 + 1e-5)), 1.5e-3 * (1 + 0.5e-5), 1e-12);
+    EXPECT_DOUBLE_EQ(hertz_equivalent_radius(1e-3, 3e-3), hertz_equivalent_radius(3e-3, 1e-3));
+}
+
+/// Forward Hertz solution for an ellipse of semi-axes a >= b and peak pressure p0 (Johnson
+/// 1985, eqs. 3.42 and 3.46): relative curvatures A, B, load F and approach delta. The
+/// equivalent radius computed from the curvatures must reproduce F = 4/3 E* sqrt(R_e) d^1.5.
+TEST(HertzEquivalentRadius, ReproducesTheEllipticalHertzLoadApproachRelation) {
+    const double e_star = 115e9, p0 = 2e9;
+    for (double b_over_a : {0.9, 0.6, 0.4, 0.2}) {
+        const double a = 1e-4, b = b_over_a * a;
+        const double ecc = std::sqrt(1.0 - b_over_a * b_over_a);
+        const double kk = std::comp_ellint_1(ecc), ee = std::comp_ellint_2(ecc);
+        const double scale = p0 * b / (e_star * ecc * ecc * a * a);
+        const double curv_a = scale * (kk - ee);                    // along a
+        const double curv_b = scale * (a * a / (b * b) * ee - kk);  // along b
+        const double force = 2.0 / 3.0 * kPi * a * b * p0;
+        const double delta = p0 * b * kk / e_star;
+        const double r_e = hertz_equivalent_radius(0.5 / curv_a, 0.5 / curv_b);
+        const double force_law = 4.0 / 3.0 * e_star * std::sqrt(r_e) * std::pow(delta, 1.5);
+        EXPECT_NEAR(force_law, force, kEquivalentRadiusTolerance * force) << b_over_a;
+    }
+}
+
+/// A sphere on a rod is stiffer than on a flat wall, inside a cylinder softer; the equivalent
+/// radius lies between the two principal radii (near their geometric mean).
+TEST(HertzEquivalentRadius, LiesBetweenThePrincipalRadii) {
+    const double r = 1e-3, r_rod = 0.5e-3, r_cyl = 9.5e-3;
+    const double rod = hertz_equivalent_radius(r, 1.0 / (1.0 / r + 1.0 / r_rod));
+    EXPECT_LT(rod, r);
+    EXPECT_GT(rod, 1.0 / (1.0 / r + 1.0 / r_rod));
+    const double cyl = hertz_equivalent_radius(r, 1.0 / (1.0 / r - 1.0 / r_cyl));
+    EXPECT_GT(cyl, r);
+    EXPECT_LT(cyl, 1.0 / (1.0 / r - 1.0 / r_cyl));
+}
+
+}  // namespace
+}  // namespace sb::dem

@@ -101,5 +101,66 @@ INSTANTIATE_TEST_SUITE_P(
                (p_info.param.wall ? "ParticleWall" : "ParticleParticle");
     });
 
+/// Contact time of one sphere launched along +x or -x at kSpeed into a curved wall.
+double curved_wall_contact_time(const SolverOptions& o, const Eigen::Vector3d& x0, double direction,
+                                double dt) {
+    Solver s(o, particles_at({x0}, kRadius, {{direction * kSpeed, 0, 0}}));
+    double t = 0.0;
+    bool touched = false;
+    for (int k = 0; k < 1000000; ++k) {
+        s.step(dt);
+        if (s.contact_count() > 0) {
+            touched = true;
+            t += dt;
+        } else if (touched) {
+            break;
+        }
+    }
+    EXPECT_TRUE(touched);
+    EXPECT_NEAR(-s.particles().v[0].x() / (direction * kSpeed), 1.0, kRestitutionTolerance);
+    return t;
+}
+
+/// Hertz against curved walls (undamped): the contact time follows Hertz theory with the
+/// equivalent radius of the elliptical contact, 1/r_y = 1/R + 1/R_rod across a rod (convex)
+/// and 1/R - 1/R_cyl across the cylinder side (concave), r_x = R along their axes; with the
+/// sphere's own radius (a flat wall) it would fall outside the tolerance.
+TEST(CurvedWallImpact, HertzContactTimeFollowsTheEquivalentRadiusOfRodAndCylinder) {
+    const double nu = 0.3, young = 210e9;
+    const double e_star = young / (2 * (1 - nu * nu));
+    const double m = sphere_mass();
+    auto theory = [&](double r_e) {
+        return hertz_contact_time(m, 4.0 / 3.0 * e_star * std::sqrt(r_e), kSpeed);
+    };
+    const double t_flat = theory(kRadius);
+
+    SolverOptions rod = free_box_options(1, NormalLaw::hertz);
+    rod.contact.damping = DampingLaw::none;
+    rod.enclosure.rods.enabled = true;
+    rod.enclosure.rods.rod_diameter_m = 1e-3;
+    rod.enclosure.rods.cell_size_m = 5e-3;
+    const double r_rod = 0.5e-3;
+    const double expected_rod =
+        theory(hertz_equivalent_radius(kRadius, 1.0 / (1.0 / kRadius + 1.0 / r_rod)));
+    ASSERT_GT(std::abs(t_flat - expected_rod), 5 * kContactTimeTolerance * expected_rod);
+    // 2.5 mm from the x- and y-rods (out of reach), approaching the z-rod through (0, 0)
+    const double t_rod = curved_wall_contact_time(rod, {kRadius + r_rod + 1e-6, 0.0, 52.5e-3}, -1.0,
+                                                  expected_rod / 400.0);
+    EXPECT_NEAR(t_rod, expected_rod, kContactTimeTolerance * expected_rod);
+
+    SolverOptions cyl = free_box_options(1, NormalLaw::hertz);
+    cyl.contact.damping = DampingLaw::none;
+    cyl.enclosure.shape = EnclosureShape::cylinder;
+    cyl.enclosure.inner_diameter_m = 19e-3;
+    cyl.enclosure.height_m = 25e-3;
+    const double r_cyl = 9.5e-3;
+    const double expected_cyl =
+        theory(hertz_equivalent_radius(kRadius, 1.0 / (1.0 / kRadius - 1.0 / r_cyl)));
+    ASSERT_GT(std::abs(t_flat - expected_cyl), 1.5 * kContactTimeTolerance * expected_cyl);
+    const double t_cyl = curved_wall_contact_time(cyl, {r_cyl - kRadius - 1e-6, 0.0, 12.5e-3}, 1.0,
+                                                  expected_cyl / 400.0);
+    EXPECT_NEAR(t_cyl, expected_cyl, kContactTimeTolerance * expected_cyl);
+}
+
 }  // namespace
 }  // namespace sb::dem

@@ -139,35 +139,93 @@ TEST(Solver, ImpulseExchangedWithTheWallsEqualsMomentumChange) {
     EXPECT_GT(impulse.norm(), 0.0);
 }
 
-TEST(Solver, OneAndTwoThreadsGiveBitwiseIdenticalResults) {
-    SolverOptions o = shaken_options(900);
-    o.enclosure.length_x_m = 40e-3;
-    o.enclosure.length_y_m = 40e-3;
-    o.enclosure.height_m = 40e-3;
+/// Simple cubic lattice of 2 mm spheres pressed 2 um into each other and into the walls and
+/// the floor, jittered by up to 0.5 um: every particle starts with several contacts.
+ParticleSet pressed_lattice(int per_side, double spacing) {
+    ParticleSet p;
+    const double r = 1e-3;
+    const double x0 = -0.5 * (per_side - 1) * spacing;
+    for (int iz = 0; iz < per_side; ++iz) {
+        for (int iy = 0; iy < per_side; ++iy) {
+            for (int ix = 0; ix < per_side; ++ix) {
+                const int id = (iz * per_side + iy) * per_side + ix;
+                auto jitter = [id](int axis) {  // deterministic, in [-0.5, 0.5] um
+                    return 1e-6 *
+                           (static_cast<double>((id * 7919 + axis * 104729) % 1001) / 1000.0 - 0.5);
+                };
+                p.positions_m.emplace_back(x0 + ix * spacing + jitter(0),
+                                           x0 + iy * spacing + jitter(1),
+                                           r - 2e-6 + iz * spacing + jitter(2));
+                p.radii_m.push_back(r);
+            }
+        }
+    }
+    return p;
+}
+
+TEST(Solver, OneTwoAndThreeThreadsGiveBitwiseIdenticalResultsOnADenseBed) {
+    constexpr int kPerSide = 8;
+    constexpr double kSpacing = 1.998e-3;  // 2 um overlap between lattice neighbours
+    SolverOptions o = shaken_options(kPerSide * kPerSide * kPerSide);
+    o.enclosure.length_x_m = kPerSide * kSpacing - 2e-6;  // outer spheres press the side walls
+    o.enclosure.length_y_m = o.enclosure.length_x_m;
+    o.contact.normal_stiffness = 1e5;
     o.contact.tangential = TangentialLaw::coulomb_spring;
+    o.contact.rolling = RollingLaw::constant_torque;
     o.energy_layers = 4;
-    const ParticleSet p = fill_random(o, 7);
+    // Small grain so that every loop is split across all threads (the default keeps a bed this
+    // size on one thread).
+    o.parallel_grain = 16;
+    const ParticleSet p = pressed_lattice(kPerSide, kSpacing);
+    const double dt = 2e-6;
     auto run = [&](int threads) {
         SolverOptions oo = o;
         oo.threads = threads;
-        Solver s(oo, p);
-        for (int k = 0; k < 300; ++k) {
-            s.set_enclosure_state(shaken_state(k * 5e-6, 3e-3, 2 * kPi * 50));
-            s.step(5e-6);
+        Solver s(oo, p, shaken_state(0.0, 1e-4, 2 * kPi * 50));
+        for (int k = 0; k < 100; ++k) {
+            s.set_enclosure_state(shaken_state(k * dt, 1e-4, 2 * kPi * 50));
+            s.step(dt);
         }
         return s;
     };
-    const Solver a = run(1), b = run(2);
-    ASSERT_GT(a.contact_count(), 0u);
-    for (std::size_t i = 0; i < a.particles().size(); ++i) {
-        ASSERT_EQ(a.particles().x[i], b.particles().x[i]) << i;
-        ASSERT_EQ(a.particles().v[i], b.particles().v[i]) << i;
-        ASSERT_EQ(a.particles().w[i], b.particles().w[i]) << i;
+    const Solver a = run(1);
+    // Every loop must really be split three ways (3 * grain particles), and the contacts
+    // must cross the thread chunks (> 4 per sphere in a lattice: many pairs straddle them).
+    const auto grain = static_cast<std::size_t>(o.parallel_grain);
+    ASSERT_GE(a.particles().size(), 3 * grain);
+    ASSERT_GT(a.contact_count(), 2 * a.particles().size());
+    for (int threads : {2, 3}) {
+        const Solver b = run(threads);
+        SCOPED_TRACE(threads);
+        ASSERT_EQ(a.contact_count(), b.contact_count());
+        for (std::size_t i = 0; i < a.particles().size(); ++i) {
+            ASSERT_EQ(a.particles().x[i], b.particles().x[i]) << i;
+            ASSERT_EQ(a.particles().v[i], b.particles().v[i]) << i;
+            ASSERT_EQ(a.particles().w[i], b.particles().w[i]) << i;
+        }
+        EXPECT_EQ(a.wall_force(), b.wall_force());
+        EXPECT_EQ(a.wall_moment(), b.wall_moment());
+        const EnergyLedger ea = a.energy(), eb = b.energy();
+        EXPECT_EQ(ea.wall_work, eb.wall_work);
+        EXPECT_EQ(ea.normal_damping, eb.normal_damping);
+        EXPECT_EQ(ea.friction, eb.friction);
+        EXPECT_EQ(ea.rolling, eb.rolling);
+        EXPECT_EQ(ea.kinetic_translational, eb.kinetic_translational);
+        EXPECT_EQ(ea.kinetic_rotational, eb.kinetic_rotational);
+        EXPECT_EQ(ea.potential, eb.potential);
+        EXPECT_EQ(ea.elastic, eb.elastic);
+        EXPECT_EQ(ea.initial_total, eb.initial_total);
+        EXPECT_EQ(ea.layer_dissipation, eb.layer_dissipation);
     }
-    EXPECT_EQ(a.wall_force(), b.wall_force());
-    EXPECT_EQ(a.wall_moment(), b.wall_moment());
-    EXPECT_EQ(a.energy().normal_damping, b.energy().normal_damping);
-    EXPECT_EQ(a.energy().layer_dissipation, b.energy().layer_dissipation);
+}
+
+TEST(SolverOptions, ParallelGrainMustBePositive) {
+    SolverOptions o;
+    o.contact.normal_stiffness = 1e5;
+    o.parallel_grain = 0;
+    const Violations v = o.validate();
+    ASSERT_EQ(v.size(), 1u);
+    EXPECT_EQ(v[0].key, "parallel_grain");
 }
 
 TEST(Solver, LockedParticlesMoveWithTheEnclosureUntilRelease) {

@@ -1,0 +1,310 @@
+// DEM throughput on the two reference problems of docs/performance.md, for the side-by-side
+// run against LAMMPS (perf/run_dem_vs_lammps.sh):
+//   (a) the paper-000 damper: 120 x 3 mm steel spheres in the 19 x 25 mm cylinder, 6.3 Hz,
+//       3 g along the axis (gravity along the axis), Hooke k = 2e5 N/m, e = 0.9, history
+//       spring with friction 0.6, no rolling resistance, dt = 2 us (as validation/lammps);
+//   (b) 5,000 x 2 mm steel spheres in paper 002's 30 x 30 x 50 mm cavity, settled under
+//       gravity from a body-centred lattice, then shaken along z at 120 Hz, 10.5 g (paper
+//       002 section 4), Hooke k = 1e5 N/m, same pair properties, dt = 2 us.
+// Both enclosures move as z = A (1 - cos wt), like LAMMPS's `wiggle` and `in.damper`.
+//
+// Usage: dem_throughput a|b [--threads N] [--warmup STEPS] [--steps STEPS] [--ledger 0|1]
+//                           [--bed FILE] [--write-lammps-data FILE]
+// --bed (case b): settled bed cache; read if present, else settled and written.
+// --write-lammps-data: writes the initial state as a LAMMPS `atom_style sphere` data file
+// and exits; --lammps-vars 1 prints the matching `-var` arguments of validation/lammps/
+// in.damper (a) or in.box5000 (b) and exits. Otherwise prints one line `key=value ...` with
+// particle-steps/s of the timed steps.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <string>
+
+#include "dem/setup.hpp"
+#include "dem/solver.hpp"
+
+namespace {
+
+using namespace sb::dem;
+
+struct Case {
+    SolverOptions options;
+    double frequency_hz = 0.0;
+    double level_m_s2 = 0.0;
+    double dt_s = 2e-6;
+    long warmup_steps = 0;
+    long steps = 0;
+};
+
+Case case_a() {
+    Case c;
+    SolverOptions& o = c.options;
+    o.particles.count = 120;
+    o.particles.diameter_m = 3e-3;
+    o.contact.normal_stiffness = 2e5;
+    o.contact.tangential = TangentialLaw::coulomb_spring;
+    o.contact.rolling = RollingLaw::none;
+    o.contact.particle_particle = {0.9, 0.6, 0.0};
+    o.contact.particle_wall = {0.9, 0.6, 0.0};
+    c.frequency_hz = 6.3;
+    c.level_m_s2 = 3.0 * sb::kStandardGravity;
+    c.warmup_steps = 200000;  // 0.4 s: past the start-up transient of the random fill
+    c.steps = 300000;
+    return c;
+}
+
+Case case_b() {
+    Case c;
+    SolverOptions& o = c.options;
+    o.particles.count = 5000;
+    o.particles.diameter_m = 2e-3;
+    o.enclosure.shape = EnclosureShape::box;
+    o.enclosure.length_x_m = 30e-3;
+    o.enclosure.length_y_m = 30e-3;
+    o.enclosure.height_m = 50e-3;
+    o.contact.normal_stiffness = 1e5;
+    o.contact.tangential = TangentialLaw::coulomb_spring;
+    o.contact.rolling = RollingLaw::none;
+    o.contact.particle_particle = {0.9, 0.6, 0.0};
+    o.contact.particle_wall = {0.9, 0.6, 0.0};
+    c.frequency_hz = 120.0;
+    c.level_m_s2 = 10.5 * sb::kStandardGravity;
+    c.warmup_steps = 5000;
+    c.steps = 10000;
+    return c;
+}
+
+EnclosureState shaken(const Case& c, double t) {
+    const double w = sb::kTwoPi * c.frequency_hz, amp = c.level_m_s2 / (w * w);
+    EnclosureState e;
+    e.position_m = Eigen::Vector3d(0, 0, amp * (1.0 - std::cos(w * t)));
+    e.velocity_m_s = Eigen::Vector3d(0, 0, amp * w * std::sin(w * t));
+    return e;
+}
+
+/// Body-centred layers (15 x 15 on the corners, 14 x 14 on the centres) with 5 um gaps, so
+/// that the bed settles into a dense packing instead of standing in columns.
+ParticleSet bcc_lattice(const SolverOptions& o) {
+    ParticleSet p;
+    const double d = o.particles.diameter_m, r = 0.5 * d, gap = 5e-6;
+    const double lx = o.enclosure.length_x_m;
+    const double dz = std::sqrt(0.5) * (d + gap);  // touching spheres offset by (d/2, d/2)
+    int placed = 0;
+    for (int layer = 0; placed < o.particles.count; ++layer) {
+        const bool centre = layer % 2 == 1;
+        const int per_row =
+            static_cast<int>(std::floor((lx - (centre ? 2 * d : d)) / d + 1e-9)) + 1;
+        const double x0 = -0.5 * (per_row - 1) * d;
+        for (int iy = 0; iy < per_row && placed < o.particles.count; ++iy) {
+            for (int ix = 0; ix < per_row && placed < o.particles.count; ++ix, ++placed) {
+                p.positions_m.emplace_back(x0 + ix * d, x0 + iy * d, r + gap + layer * dz);
+                p.radii_m.push_back(r);
+            }
+        }
+    }
+    return p;
+}
+
+void write_bed(const std::filesystem::path& path, const ParticleSet& p) {
+    std::ofstream out(path);
+    out << std::setprecision(17);
+    for (std::size_t i = 0; i < p.positions_m.size(); ++i) {
+        out << p.positions_m[i].transpose() << ' ' << p.radii_m[i] << ' '
+            << p.velocities_m_s[i].transpose() << ' ' << p.angular_velocities_rad_s[i].transpose()
+            << '\n';
+    }
+}
+
+ParticleSet read_bed(const std::filesystem::path& path) {
+    ParticleSet p;
+    std::ifstream in(path);
+    double v[10];
+    while (in >> v[0] >> v[1] >> v[2] >> v[3] >> v[4] >> v[5] >> v[6] >> v[7] >> v[8] >> v[9]) {
+        p.positions_m.emplace_back(v[0], v[1], v[2]);
+        p.radii_m.push_back(v[3]);
+        p.velocities_m_s.emplace_back(v[4], v[5], v[6]);
+        p.angular_velocities_rad_s.emplace_back(v[7], v[8], v[9]);
+    }
+    return p;
+}
+
+/// Lets the lattice fall and rest in the static cavity: 0.03 s with e = 0.5 (faster to come
+/// to rest), then 0.01 s with the benchmark's own law.
+ParticleSet settled_bed(const Case& c) {
+    SolverOptions o = c.options;
+    o.track_energy = false;
+    o.threads = 0;
+    ParticleSet p = bcc_lattice(o);
+    for (int phase = 0; phase < 2; ++phase) {
+        SolverOptions op = o;
+        if (phase == 0) op.contact.particle_particle.restitution = 0.5;
+        if (phase == 0) op.contact.particle_wall.restitution = 0.5;
+        Solver s(op, p);
+        const long steps = std::lround((phase == 0 ? 0.03 : 0.01) / c.dt_s);
+        for (long k = 0; k < steps; ++k) s.step(c.dt_s);
+        p = s.local_snapshot();
+    }
+    return p;
+}
+
+void write_lammps_data(const std::filesystem::path& path, const Case& c, const ParticleSet& p) {
+    const auto& e = c.options.enclosure;
+    const double hx = e.shape == EnclosureShape::box ? 0.5 * e.length_x_m + 1e-3
+                                                     : 0.5 * e.inner_diameter_m + 2.5e-3;
+    const double hy = e.shape == EnclosureShape::box ? 0.5 * e.length_y_m + 1e-3 : hx;
+    std::ofstream d(path);
+    d << std::setprecision(17) << "ShakerBench initial state\n\n"
+      << p.positions_m.size() << " atoms\n1 atom types\n"
+      << -hx << ' ' << hx << " xlo xhi\n"
+      << -hy << ' ' << hy << " ylo yhi\n"
+      << -5e-3 << ' ' << e.height_m + 20e-3 << " zlo zhi\n\nAtoms # sphere\n\n";
+    const double rho = c.options.particles.material.density_kg_m3;
+    for (std::size_t i = 0; i < p.positions_m.size(); ++i) {
+        d << i + 1 << " 1 " << 2 * p.radii_m[i] << ' ' << rho << ' ' << p.positions_m[i].x() << ' '
+          << p.positions_m[i].y() << ' ' << p.positions_m[i].z() << '\n';
+    }
+    if (!p.velocities_m_s.empty()) {
+        d << "\nVelocities\n\n";
+        for (std::size_t i = 0; i < p.positions_m.size(); ++i) {
+            d << i + 1 << ' ' << p.velocities_m_s[i].transpose() << ' '
+              << p.angular_velocities_rad_s[i].transpose() << '\n';
+        }
+    }
+}
+
+/// The timed steps, in a function of their own so that profilers can select them
+/// (valgrind --tool=callgrind --collect-atstart=no --toggle-collect='*timed_steps*').
+[[gnu::noinline]] double timed_steps(Solver& s, const Case& c, long& k) {
+    double contacts = 0.0;
+    for (long q = 0; q < c.steps; ++q, ++k) {
+        s.set_enclosure_state(shaken(c, static_cast<double>(k) * c.dt_s));
+        s.step(c.dt_s);
+        contacts += static_cast<double>(s.contact_count());
+    }
+    return contacts;
+}
+
+/// LAMMPS `-var` arguments for the same law, excitation and step counts: damping
+/// eta = 2 zeta sqrt(k m*) with zeta from the restitution (no tensile force on both sides).
+std::string lammps_vars(const Case& c) {
+    const auto& o = c.options;
+    const double d = o.particles.diameter_m;
+    const double m = o.particles.material.density_kg_m3 * sb::kPi / 6.0 * d * d * d;
+    const double k = o.contact.normal_stiffness;
+    const double zeta = linear_zeta_from_restitution(o.contact.particle_particle.restitution);
+    const double zeta_w = linear_zeta_from_restitution(o.contact.particle_wall.restitution);
+    const double w = sb::kTwoPi * c.frequency_hz;
+    std::ostringstream v;
+    v << std::setprecision(12) << "-var dt " << c.dt_s << " -var warmup " << c.warmup_steps
+      << " -var steps " << c.steps << " -var kn " << k << " -var kt "
+      << o.contact.tangential_stiffness_ratio * k << " -var etapp "
+      << 2.0 * zeta * std::sqrt(k * 0.5 * m) << " -var etapw " << 2.0 * zeta_w * std::sqrt(k * m)
+      << " -var amp " << c.level_m_s2 / (w * w) << " -var omega " << w << " -var period "
+      << 1.0 / c.frequency_hz << " -var skin " << o.neighbor_skin_fraction * d;
+    return v.str();
+}
+
+[[noreturn]] void usage(const std::string& why) {
+    std::cerr << "dem_throughput: " << why
+              << "\nusage: dem_throughput a|b [--threads N] [--warmup STEPS] [--steps STEPS]"
+                 " [--ledger 0|1] [--bed FILE] [--write-lammps-data FILE] [--lammps-vars 1]\n";
+    std::exit(2);
+}
+
+long parse_long(const std::string& key, const char* text) {
+    char* end = nullptr;
+    const long v = std::strtol(text, &end, 10);
+    if (end == text || *end != '\0' || v < 0) usage(key + ": expected a non-negative integer");
+    return v;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) usage("missing case");
+    const std::string name = argv[1];
+    if (name != "a" && name != "b") usage("case must be a or b, got '" + name + "'");
+    Case c = name == "a" ? case_a() : case_b();
+    int threads = 1;
+    bool ledger = false;
+    std::string bed, lammps_data;
+    bool print_lammps_vars = false;
+    for (int k = 2; k < argc; ++k) {
+        const std::string key = argv[k];
+        if (k + 1 >= argc) usage(key + ": missing value");
+        const char* value = argv[++k];
+        if (key == "--threads") {
+            threads = static_cast<int>(parse_long(key, value));
+        } else if (key == "--warmup") {
+            c.warmup_steps = parse_long(key, value);
+        } else if (key == "--steps") {
+            c.steps = parse_long(key, value);
+        } else if (key == "--ledger") {
+            ledger = parse_long(key, value) != 0;
+        } else if (key == "--bed") {
+            bed = value;
+        } else if (key == "--lammps-vars") {
+            print_lammps_vars = parse_long(key, value) != 0;
+        } else if (key == "--write-lammps-data") {
+            lammps_data = value;
+        } else {
+            usage("unknown option " + key);
+        }
+    }
+    c.options.threads = threads;
+    c.options.track_energy = ledger;
+    if (print_lammps_vars) {
+        std::cout << lammps_vars(c) << '\n';
+        return 0;
+    }
+
+    ParticleSet p;
+    if (name == "a") {
+        p = fill_random(c.options, 2021);
+    } else if (!bed.empty() && std::filesystem::exists(bed)) {
+        p = read_bed(bed);
+    } else {
+        p = settled_bed(c);
+        if (!bed.empty()) write_bed(bed, p);
+    }
+    if (!lammps_data.empty()) {
+        write_lammps_data(lammps_data, c, p);
+        return 0;
+    }
+    try {
+        Solver s(c.options, p, shaken(c, 0.0));
+        long k = 0;
+        for (; k < c.warmup_steps; ++k) {
+            s.set_enclosure_state(shaken(c, static_cast<double>(k) * c.dt_s));
+            s.step(c.dt_s);
+        }
+        const auto t0 = std::chrono::steady_clock::now();
+        const std::clock_t cpu0 = std::clock();
+        const double contacts = timed_steps(s, c, k);
+        // process CPU time (all threads): on a shared host it excludes the time the process
+        // waited for a core, which wall time does not
+        const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
+        const double wall =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        const double n = static_cast<double>(p.positions_m.size());
+        std::printf(
+            "case=%s threads=%d ledger=%d particles=%.0f steps=%ld wall_s=%.4f cpu_s=%.4f "
+            "us_per_step=%.4g particle_steps_per_s=%.4g particle_steps_per_cpu_s=%.4g "
+            "mean_contacts=%.1f\n",
+            name.c_str(), threads, ledger ? 1 : 0, n, c.steps, wall, cpu,
+            1e6 * wall / static_cast<double>(c.steps), n * static_cast<double>(c.steps) / wall,
+            n * static_cast<double>(c.steps) / cpu,
+            contacts / static_cast<double>(std::max(1L, c.steps)));
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "dem_throughput: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}
