@@ -8,8 +8,7 @@
 
 namespace sb::identification {
 
-namespace {
-int order(FrfForm form) {
+int form_order(FrfForm form) {
     switch (form) {
         case FrfForm::receptance:
             return 0;
@@ -20,7 +19,6 @@ int order(FrfForm form) {
     }
     return 0;
 }
-}  // namespace
 
 void check_frf(const Frf& frf) {
     if (frf.frequency_hz.size() != frf.value.size()) {
@@ -38,7 +36,7 @@ Frf convert(const Frf& frf, FrfForm to) {
     check_frf(frf);
     Frf out = frf;
     out.form = to;
-    const int power = order(to) - order(frf.form);
+    const int power = form_order(to) - form_order(frf.form);
     for (std::size_t i = 0; i < out.value.size(); ++i) {
         const std::complex<double> iw(0.0, hz_to_rad_s(frf.frequency_hz[i]));
         out.value[i] *= std::pow(iw, power);

@@ -24,6 +24,10 @@ struct Frf {
 /// Throws std::invalid_argument unless sizes match, frequencies are > 0 and strictly increasing.
 void check_frf(const Frf& frf);
 
+/// Order k of a form as a multiple of receptance, (iω)^k × receptance: 0 receptance,
+/// 1 mobility, 2 accelerance.
+int form_order(FrfForm form);
+
 /// The same FRF in another form: multiplies by (iω)^(k_to - k_from) with k = 0 (receptance),
 /// 1 (mobility), 2 (accelerance); receptance = accelerance/(iω)^2, mobility = accelerance/(iω).
 Frf convert(const Frf& frf, FrfForm to);

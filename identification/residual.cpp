@@ -20,18 +20,6 @@ namespace {
 /// complex points; one more leaves a check.
 constexpr int kMinPoints = 5;
 
-int form_order(FrfForm form) {  // k in (iω)^k × receptance
-    switch (form) {
-        case FrfForm::receptance:
-            return 0;
-        case FrfForm::mobility:
-            return 1;
-        case FrfForm::accelerance:
-            return 2;
-    }
-    return 0;
-}
-
 /// Normalised data: q = ω/ω_ref, t = mobility/|mobility|max.
 struct Points {
     std::vector<double> q;

@@ -17,8 +17,8 @@ struct Result {
     std::string output;  // stdout and stderr together
 };
 
-inline Result run(const std::string& arguments) {
-    const std::string command = std::string(SB_CLI) + " " + arguments + " 2>&1";
+/// Runs a shell command, stdout and stderr together.
+inline Result run_command(const std::string& command) {
     Result result;
     FILE* pipe = popen(command.c_str(), "r");
     if (pipe == nullptr) {
@@ -31,6 +31,11 @@ inline Result run(const std::string& arguments) {
     const int status = pclose(pipe);
     result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return result;
+}
+
+/// `shakerbench ARGS`.
+inline Result run(const std::string& arguments) {
+    return run_command(std::string(SB_CLI) + " " + arguments + " 2>&1");
 }
 
 inline std::filesystem::path temp_dir(const std::string& name) {

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "cli_helpers.hpp"
+#include "tests/support/small_beam_config.hpp"
 
 namespace {
 
@@ -58,36 +59,7 @@ TEST(Cli, ABadConfigGivesFileLineKeyAndExitCodeTwo) {
         << r.output;
 }
 
-/// The beam of the README's walk-through and of docs/config.md, line by line.
-const std::string kBeamConfig = R"(
-[campaign]
-name = "t"
-
-[structure]
-kind = "beam"
-
-[structure.beam]
-length_m = 0.5
-width_m = 0.05
-thickness_m = 0.003
-density_kg_m3 = 2700.0
-youngs_modulus_pa = 70e9
-
-[structure.beam.supports.root]
-x_m = 0.0
-kind = "clamped"
-
-[structure.beam.points]
-shaker = 0.1
-tip = 0.5
-
-[[structure.beam.masses]]
-point = "tip"
-mass_kg = 0.01
-
-[structure.excitation]
-point = "shaker"
-)";
+const std::string& kBeamConfig = sb::test::kSmallBeamConfig;
 
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
     const auto at = text.find(from);
@@ -97,20 +69,8 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 
 /// Runs `shakerbench ARGS` in `dir`, so that files named relative to it print as written.
 Result run_in(const std::filesystem::path& dir, const std::string& arguments) {
-    const std::string command =
-        "cd '" + dir.string() + "' && " + std::string(SB_CLI) + " " + arguments + " 2>&1";
-    Result result;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (pipe == nullptr) {
-        return result;
-    }
-    std::array<char, 4096> buffer{};
-    while (fgets(buffer.data(), static_cast<int>(buffer.size()), pipe) != nullptr) {
-        result.output += buffer.data();
-    }
-    const int status = pclose(pipe);
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return result;
+    return run_command("cd '" + dir.string() + "' && " + std::string(SB_CLI) + " " + arguments +
+                       " 2>&1");
 }
 
 /// `shakerbench modes NAME` on `text` written to NAME in a fresh directory.

@@ -8,39 +8,12 @@
 #include <utility>
 
 #include "bench/config_errors.hpp"
+#include "tests/support/small_beam_config.hpp"
 
 namespace sb::bench {
 namespace {
 
-const std::string kValidBeam = R"(
-[campaign]
-name = "t"
-
-[structure]
-kind = "beam"
-
-[structure.beam]
-length_m = 0.5
-width_m = 0.05
-thickness_m = 0.003
-density_kg_m3 = 2700.0
-youngs_modulus_pa = 70e9
-
-[structure.beam.supports.root]
-x_m = 0.0
-kind = "clamped"
-
-[structure.beam.points]
-shaker = 0.1
-tip = 0.5
-
-[[structure.beam.masses]]
-point = "tip"
-mass_kg = 0.01
-
-[structure.excitation]
-point = "shaker"
-)";
+const std::string& kValidBeam = sb::test::kSmallBeamConfig;
 
 /// Loads `text`, expecting failure; returns the formatted errors.
 std::vector<std::string> errors_of(const std::string& text) {
