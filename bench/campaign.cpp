@@ -320,7 +320,7 @@ SweepCheckpoint run_sweep(const Sweep& sweep, Shared& shared, std::vector<std::s
                              std::move(dampers), channel_points, dt_max,
                              std::max(series_samples, 1));
     specimen.set_start_model(prepared.estimate_model, prepared.estimate_basis);
-    SpecimenPlant plant(specimen, series_samples);
+    SpecimenPlant plant(specimen, series_samples, campaign.scale_response_on_update);
     const double target_rms = g_to_m_s2(sweep.level_g);
     const auto& frequencies = prepared.frequencies_hz;
     const auto linear_gain = [&](double f) {

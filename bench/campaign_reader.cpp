@@ -153,6 +153,9 @@ CampaignSpec read_campaign(Section& root, Section& campaign) {
                        : point_start == "equivalent-steady-state"
                            ? CampaignSpec::PointStart::equivalent_steady_state
                            : CampaignSpec::PointStart::previous_state;
+    spec.scale_response_on_update =
+        campaign.boolean("scale_response_on_update", true,
+                         "scale the structure's harmonic response with every amplitude update");
     spec.response_points =
         campaign.strings("response_points", "named points recorded besides the control point");
     const std::vector<std::string> wanted =

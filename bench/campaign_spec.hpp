@@ -99,6 +99,11 @@ struct CampaignSpec {
     ///   the previous point's equivalent driven mode predicts (bench/driven_mode.hpp).
     enum class PointStart { previous_state, linear_steady_state, equivalent_steady_state };
     PointStart point_start = PointStart::previous_state;
+    /// When the controller changes the amplitude within a point by the ratio r, the
+    /// structure's harmonic response is scaled by r about its mean over the last period
+    /// (SpecimenPlant): exact for a linear specimen, and it spares a particle-damped beam the
+    /// slow transient (several periods per 1/(2 pi zeta)) that the jump would otherwise start.
+    bool scale_response_on_update = true;
 };
 
 }  // namespace sb::bench

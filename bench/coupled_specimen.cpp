@@ -256,6 +256,30 @@ dem::EnclosureState CoupledSpecimen::enclosure_state(std::size_t damper) const {
     return enclosure;
 }
 
+const Eigen::VectorXd& CoupledSpecimen::modal_displacement() const {
+    if (!structure_) {
+        throw std::logic_error("coupled specimen: no structure state before set_frequency()");
+    }
+    return structure_->q();
+}
+
+void CoupledSpecimen::scale_response(double ratio, const Eigen::VectorXd& q_mean) {
+    const Eigen::VectorXd& q = modal_displacement();
+    const Eigen::VectorXd scaled = q_mean + ratio * (q - q_mean);
+    const Eigen::VectorXd scaled_rate = ratio * structure_->q_dot();
+    // The beds ride with their enclosures through the jump: same enclosure-frame positions
+    // and relative velocities, as between two points (restore()), so the jump itself starts
+    // no impacts.
+    std::vector<dem::ParticleSet> local(dampers_.size());
+    for (std::size_t i = 0; i < dampers_.size(); ++i) {
+        if (dampers_[i].solver) {
+            local[i] = dampers_[i].solver->local_snapshot();
+        }
+    }
+    structure_->set_state(scaled, scaled_rate, structure_->time_s());
+    rebuild_solvers(local);
+}
+
 SpecimenState CoupledSpecimen::state() const {
     SpecimenState s;
     s.q = structure_->q();

@@ -84,6 +84,15 @@ class CoupledSpecimen {
     /// restarts the point clock at 0. A sweep goes through state() and restore() between every
     /// two points, interrupted or not, so a resumed campaign repeats the same arithmetic.
     [[nodiscard]] SpecimenState state() const;
+
+    /// Modal displacements of the structure now.
+    [[nodiscard]] const Eigen::VectorXd& modal_displacement() const;
+    /// Scales the structure's response about `q_mean` at the current time: q -> q_mean +
+    /// ratio (q - q_mean), q_dot -> ratio q_dot (the particles keep their state). At the start
+    /// of a period of a steady harmonic response at amplitude A, with q_mean its mean over the
+    /// period, this is the steady state at amplitude ratio A (linear structure). The particles
+    /// keep their enclosure-frame positions and relative velocities.
+    void scale_response(double ratio, const Eigen::VectorXd& q_mean);
     void restore(const SpecimenState& state);
 
     [[nodiscard]] const std::vector<MountedDamper>& dampers() const { return dampers_; }

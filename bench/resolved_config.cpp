@@ -187,6 +187,7 @@ std::string resolved_config_toml(const CampaignConfig& config, std::string_view 
                     : c.point_start == CampaignSpec::PointStart::equivalent_steady_state
                         ? "equivalent-steady-state"
                         : "previous-state");
+    campaign.insert("scale_response_on_update", c.scale_response_on_update);
     campaign.insert("seed", static_cast<std::int64_t>(c.seed));
     campaign.insert("frequencies", frequencies(c.frequencies));
     root.insert("campaign", campaign);

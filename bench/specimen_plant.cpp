@@ -9,12 +9,23 @@
 
 namespace sb::bench {
 
-SpecimenPlant::SpecimenPlant(CoupledSpecimen& specimen, int series_samples_per_period)
-    : specimen_(&specimen), series_samples_per_period_(series_samples_per_period) {}
+SpecimenPlant::SpecimenPlant(CoupledSpecimen& specimen, int series_samples_per_period,
+                             bool scale_response_on_update)
+    : specimen_(&specimen),
+      series_samples_per_period_(series_samples_per_period),
+      scale_response_on_update_(scale_response_on_update) {}
 
 control::PeriodResult SpecimenPlant::run_period(double amplitude, double frequency_hz) {
     if (frequency_hz != specimen_->frequency_hz()) {
         specimen_->set_frequency(frequency_hz);
+        have_period_mean_ = false;
+    }
+    // Every period starts at phase 0 of the point's sine, so the state now is that of the
+    // start of a period: scaling the response about the last period's mean carries a steady
+    // response at the old amplitude to the steady response at the new one.
+    if (scale_response_on_update_ && have_period_mean_ && last_amplitude_ > 0.0 &&
+        amplitude != last_amplitude_) {
+        specimen_->scale_response(amplitude / last_amplitude_, period_mean_q_);
     }
     const int n = specimen_->steps_per_period();
     const std::size_t channels = specimen_->channel_names().size();
@@ -22,13 +33,22 @@ control::PeriodResult SpecimenPlant::run_period(double amplitude, double frequen
     for (auto& s : samples_) {
         s.assign(static_cast<std::size_t>(n), 0.0);
     }
+    period_sum_q_.setZero(specimen_->modal_displacement().size());
     for (int k = 0; k < n; ++k) {
         specimen_->step(amplitude, values_);
         for (std::size_t c = 0; c < channels; ++c) {
             samples_[c][static_cast<std::size_t>(k)] = values_[c];
         }
+        if (scale_response_on_update_) {
+            period_sum_q_ += specimen_->modal_displacement();
+        }
     }
     steps_run_ += n;
+    if (scale_response_on_update_) {
+        period_mean_q_ = period_sum_q_ / n;
+        have_period_mean_ = true;
+    }
+    last_amplitude_ = amplitude;
 
     // Every period starts at phase 0 of the point's sine, so the sample k (end of step k) is
     // at time (k + 1) dt of the period: X = (2/N) sum x_k e^{-i w t_k} is the exact

@@ -1,6 +1,7 @@
 // The coupled specimen as the controller's plant: one call = one period of the stepped sine.
 #pragma once
 
+#include <Eigen/Core>
 #include <complex>
 #include <vector>
 
@@ -26,14 +27,22 @@ struct WindowChannels {
 class SpecimenPlant : public control::Plant {
   public:
     /// `series_samples_per_period` > 0 keeps that many samples of every period.
-    SpecimenPlant(CoupledSpecimen& specimen, int series_samples_per_period);
+    /// `scale_response_on_update`: when the amplitude changes at the same frequency, the
+    /// structure's response is first scaled by new/old about its mean over the last period
+    /// (CoupledSpecimen::scale_response), so the update lands near the new steady state.
+    SpecimenPlant(CoupledSpecimen& specimen, int series_samples_per_period,
+                  bool scale_response_on_update = false);
 
     /// Runs one period at `amplitude`; the first call at a new frequency switches the
     /// specimen's time step. Reports the control channel (the first acceleration channel).
     control::PeriodResult run_period(double amplitude, double frequency_hz) override;
 
-    /// Forgets the periods of the previous point.
-    void begin_point() { periods_.clear(); }
+    /// Forgets the periods of the previous point (a point never scales the response of the
+    /// one before, so a resumed sweep repeats the same arithmetic).
+    void begin_point() {
+        periods_.clear();
+        have_period_mean_ = false;
+    }
     [[nodiscard]] const std::vector<PeriodChannels>& periods() const { return periods_; }
     /// Steady values over periods [begin, end) of the current point.
     [[nodiscard]] WindowChannels window(int begin, int end) const;
@@ -42,6 +51,11 @@ class SpecimenPlant : public control::Plant {
   private:
     CoupledSpecimen* specimen_;
     int series_samples_per_period_;
+    bool scale_response_on_update_;
+    double last_amplitude_ = 0.0;    ///< amplitude of the last period run [input unit]
+    bool have_period_mean_ = false;  ///< a whole period at the current frequency was run
+    Eigen::VectorXd period_mean_q_;  ///< mean modal displacement over the last period
+    Eigen::VectorXd period_sum_q_;
     std::vector<PeriodChannels> periods_;
     std::vector<double> values_;
     std::vector<std::vector<double>> samples_;
