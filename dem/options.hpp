@@ -126,7 +126,7 @@ struct SolverOptions {
     /// exceed the gain). Results do not depend on it; lower it to exercise the parallel path.
     int parallel_grain = 512;
     bool track_energy = true;  ///< energy ledger each step
-    int energy_layers = 0;     ///< dissipation per layer along local z (0 = off)
+    int energy_layers = 0;     ///< dissipation per horizontal layer (along gravity; 0 = off)
     Violations validate() const;
 };
 

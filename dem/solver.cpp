@@ -79,6 +79,8 @@ Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
                      "initial enclosure pose and velocity"});
     }
     if (!v.empty()) throw std::invalid_argument(join(v));
+    layers_ = HorizontalLayers::for_gravity(enclosure_, enclosure, options_.gravity_m_s2,
+                                            options_.energy_layers);
 
     // Pair coefficients: [0] particle-particle, [1] particle-wall.
     const auto& c = options_.contact;
@@ -749,18 +751,17 @@ void Solver::account_energy(double dt) {
 #pragma omp parallel num_threads(used)
         work(logs_[static_cast<std::size_t>(omp_get_thread_num())]);
     }
-    const int layers = options_.energy_layers;
-    const double lz = enclosure_.lower().z();
-    const double hz = enclosure_.upper().z() - lz;
+    // Layers along gravity (not along the enclosure axis): for a tilted or lying enclosure
+    // the bed stacks along g, and paper 002's Fig. 13 counts its layers upwards from the floor.
+    const bool layered = layers_.count() > 0;
     for (const auto& log : logs_) {
         for (const EnergyRecord& r : log) {
             ledger_.wall_work += r.e[0];
             ledger_.normal_damping += r.e[1];
             ledger_.friction += r.e[2];
             ledger_.rolling += r.e[3];
-            if (layers > 0) {
-                const double z = es.to_local(r.xc).z();
-                const int l = std::clamp(static_cast<int>((z - lz) / hz * layers), 0, layers - 1);
+            if (layered) {
+                const int l = layers_.index(es.to_local(r.xc));
                 ledger_.layer_dissipation[static_cast<std::size_t>(l)] += r.e[1] + r.e[2] + r.e[3];
             }
         }

@@ -55,10 +55,12 @@ struct EnergyLedger {
     double rolling = 0.0;         ///< dissipated by rolling resistance
     double kinetic_translational = 0.0;
     double kinetic_rotational = 0.0;
-    double potential = 0.0;                   ///< -m g.x, world frame
-    double elastic = 0.0;                     ///< stored in the normal springs
-    double initial_total = 0.0;               ///< total mechanical energy at the last reset
-    std::vector<double> layer_dissipation{};  ///< per layer along local z (bottom first)
+    double potential = 0.0;      ///< -m g.x, world frame
+    double elastic = 0.0;        ///< stored in the normal springs
+    double initial_total = 0.0;  ///< total mechanical energy at the last reset
+    /// Per horizontal layer, bottom first: slabs normal to gravity at the initial pose
+    /// (Solver::layers(), paper 002 Fig. 13).
+    std::vector<double> layer_dissipation{};
 
     double mechanical() const {
         return kinetic_translational + kinetic_rotational + potential + elastic;
@@ -104,6 +106,9 @@ class Solver {
     std::int64_t neighbor_builds() const { return neighbor_builds_; }
     const ContactLaw& law() const { return law_; }
     const Enclosure& enclosure() const { return enclosure_; }
+    /// The energy_layers slabs along gravity, fixed in the enclosure frame at the pose the
+    /// solver was built with.
+    const HorizontalLayers& layers() const { return layers_; }
     const SolverOptions& options() const { return options_; }
     /// Pair coefficients after set-up (for logging): [0] particle-particle, [1] particle-wall.
     const PairCoefficients& coefficients(int which) const { return coeff_[which]; }
@@ -165,6 +170,7 @@ class Solver {
     ContactLaw law_;
     PairCoefficients coeff_[2];
     EnclosureState enclosure_state_;
+    HorizontalLayers layers_;
     ParticleState state_;
     std::vector<Eigen::Vector3d> local_x_, lock_local_;
     std::vector<double> hertz_r_side_, hertz_r_rod_;  ///< Hertz R* on cylinder side, rods [m]
