@@ -3,16 +3,12 @@
 
 #include "dem/setup.hpp"
 #include "dem/solver.hpp"
+#include "dem_reference_problems.hpp"
 
 namespace sb::dem {
 namespace {
 
-EnclosureState axial(double t, double amp, double w) {
-    EnclosureState e;
-    e.position_m = Eigen::Vector3d(0, 0, amp * (1 - std::cos(w * t)));
-    e.velocity_m_s = Eigen::Vector3d(0, 0, amp * w * std::sin(w * t));
-    return e;
-}
+using perf::axial_wiggle;
 
 /// (a) Paper-000 damper: 120 x 3 mm steel spheres, 19 x 25 mm cylinder, 6.3 Hz, 3 g along the
 /// axis, Hooke k = 2e5 N/m, e = 0.9, history-spring friction 0.6, dt = 2e-6 s (as the LAMMPS
@@ -25,14 +21,14 @@ void BM_Paper000Damper(benchmark::State& st) {
     o.threads = static_cast<int>(st.range(0));
     o.track_energy = st.range(1) != 0;
     const double w = kTwoPi * 6.3, amp = 3 * kStandardGravity / (w * w), dt = 2e-6;
-    Solver s(o, fill_random(o, 2021), axial(0.0, amp, w));
+    Solver s(o, fill_random(o, 2021), axial_wiggle(0.0, amp, w));
     long k = 0;
     for (int q = 0; q < 200000; ++q, ++k) {  // 0.4 s: past the start-up transient
-        s.set_enclosure_state(axial(static_cast<double>(k) * dt, amp, w));
+        s.set_enclosure_state(axial_wiggle(static_cast<double>(k) * dt, amp, w));
         s.step(dt);
     }
     for (auto _ : st) {
-        s.set_enclosure_state(axial(static_cast<double>(k++) * dt, amp, w));
+        s.set_enclosure_state(axial_wiggle(static_cast<double>(k++) * dt, amp, w));
         s.step(dt);
     }
     st.SetItemsProcessed(st.iterations() * 120);
@@ -50,14 +46,7 @@ BENCHMARK(BM_Paper000Damper)
 /// (b) 5,000 x 2 mm steel spheres in a 30 x 30 x 50 mm box (paper 002 cavity) starting from a
 /// touching cubic lattice, shaken vertically at 100 Hz, 5 g; Hooke k = 1e5 N/m, dt = 2e-6 s.
 void BM_Box5000(benchmark::State& st) {
-    SolverOptions o;
-    o.particles.count = 5000;
-    o.particles.diameter_m = 2e-3;
-    o.enclosure.shape = EnclosureShape::box;
-    o.enclosure.length_x_m = 30e-3;
-    o.enclosure.length_y_m = 30e-3;
-    o.enclosure.height_m = 50e-3;
-    o.contact.normal_stiffness = 1e5;
+    SolverOptions o = perf::paper002_cavity_options(5000);
     o.threads = static_cast<int>(st.range(0));
     o.track_energy = st.range(1) != 0;
     ParticleSet p;
@@ -67,14 +56,14 @@ void BM_Box5000(benchmark::State& st) {
         p.radii_m.push_back(1e-3);
     }
     const double w = kTwoPi * 100.0, amp = 5 * kStandardGravity / (w * w), dt = 2e-6;
-    Solver s(o, p, axial(0.0, amp, w));
+    Solver s(o, p, axial_wiggle(0.0, amp, w));
     long k = 0;
     for (int q = 0; q < 5000; ++q, ++k) {
-        s.set_enclosure_state(axial(static_cast<double>(k) * dt, amp, w));
+        s.set_enclosure_state(axial_wiggle(static_cast<double>(k) * dt, amp, w));
         s.step(dt);
     }
     for (auto _ : st) {
-        s.set_enclosure_state(axial(static_cast<double>(k++) * dt, amp, w));
+        s.set_enclosure_state(axial_wiggle(static_cast<double>(k++) * dt, amp, w));
         s.step(dt);
     }
     st.SetItemsProcessed(st.iterations() * 5000);

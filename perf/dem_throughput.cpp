@@ -29,6 +29,7 @@
 
 #include "dem/setup.hpp"
 #include "dem/solver.hpp"
+#include "dem_reference_problems.hpp"
 
 namespace {
 
@@ -62,14 +63,8 @@ Case case_a() {
 
 Case case_b() {
     Case c;
+    c.options = sb::dem::perf::paper002_cavity_options(5000);
     SolverOptions& o = c.options;
-    o.particles.count = 5000;
-    o.particles.diameter_m = 2e-3;
-    o.enclosure.shape = EnclosureShape::box;
-    o.enclosure.length_x_m = 30e-3;
-    o.enclosure.length_y_m = 30e-3;
-    o.enclosure.height_m = 50e-3;
-    o.contact.normal_stiffness = 1e5;
     o.contact.tangential = TangentialLaw::coulomb_spring;
     o.contact.rolling = RollingLaw::none;
     o.contact.particle_particle = {0.9, 0.6, 0.0};
@@ -83,10 +78,7 @@ Case case_b() {
 
 EnclosureState shaken(const Case& c, double t) {
     const double w = sb::kTwoPi * c.frequency_hz, amp = c.level_m_s2 / (w * w);
-    EnclosureState e;
-    e.position_m = Eigen::Vector3d(0, 0, amp * (1.0 - std::cos(w * t)));
-    e.velocity_m_s = Eigen::Vector3d(0, 0, amp * w * std::sin(w * t));
-    return e;
+    return sb::dem::perf::axial_wiggle(t, amp, w);
 }
 
 /// Body-centred layers (15 x 15 on the corners, 14 x 14 on the centres) with 5 um gaps, so

@@ -90,36 +90,32 @@ std::vector<std::string> lines_naming(const std::string& output, const std::stri
     return lines;
 }
 
-TEST(CliBadConfig, ANegativeLengthIsReportedAtItsValueAndNothingElseIsBlamed) {
-    const auto r = modes_on("negative-length", "bad.toml",
-                            replaced(kBeamConfig, "length_m = 0.5", "length_m = -0.5"));
+/// `modes` on the small beam config with `from` replaced by `to` exits 2, and `expected` is
+/// the only line of its output that names the file.
+void expect_the_only_error(const std::string& name, const std::string& from, const std::string& to,
+                           const std::string& expected) {
+    const auto r = modes_on(name, "bad.toml", replaced(kBeamConfig, from, to));
     EXPECT_EQ(r.exit_code, 2) << r.output;
-    EXPECT_EQ(lines_naming(r.output, "bad.toml"),
-              std::vector<std::string>{
-                  "bad.toml:9:12: structure.beam.length_m = -0.5: must be > 0 (beam length [m])"})
-        << r.output;
+    EXPECT_EQ(lines_naming(r.output, "bad.toml"), std::vector<std::string>{expected}) << r.output;
+}
+
+TEST(CliBadConfig, ANegativeLengthIsReportedAtItsValueAndNothingElseIsBlamed) {
+    expect_the_only_error(
+        "negative-length", "length_m = 0.5", "length_m = -0.5",
+        "bad.toml:9:12: structure.beam.length_m = -0.5: must be > 0 (beam length [m])");
 }
 
 TEST(CliBadConfig, AnUnknownKeyIsReportedAsUnknown) {
-    const auto r =
-        modes_on("unknown-key", "bad.toml",
-                 replaced(kBeamConfig, "width_m = 0.05", "width_m = 0.05\nwdith_m = 0.05"));
-    EXPECT_EQ(r.exit_code, 2) << r.output;
-    EXPECT_EQ(lines_naming(r.output, "bad.toml"),
-              std::vector<std::string>{
-                  "bad.toml:11:11: structure.beam.wdith_m = 0.05: unknown key (see docs/config.md "
-                  "for the keys of [structure.beam])"})
-        << r.output;
+    expect_the_only_error(
+        "unknown-key", "width_m = 0.05", "width_m = 0.05\nwdith_m = 0.05",
+        "bad.toml:11:11: structure.beam.wdith_m = 0.05: unknown key (see docs/config.md "
+        "for the keys of [structure.beam])");
 }
 
 TEST(CliBadConfig, AMassOutsideTheBeamNamesTheAllowedRange) {
-    const auto r =
-        modes_on("mass-outside", "bad.toml", replaced(kBeamConfig, "point = \"tip\"", "x_m = 0.7"));
-    EXPECT_EQ(r.exit_code, 2) << r.output;
-    EXPECT_EQ(lines_naming(r.output, "bad.toml"),
-              std::vector<std::string>{"bad.toml:24:7: structure.beam.masses[0].x_m = 0.7: must be "
-                                       "in [0, 0.5] (mass position along the beam [m])"})
-        << r.output;
+    expect_the_only_error("mass-outside", "point = \"tip\"", "x_m = 0.7",
+                          "bad.toml:24:7: structure.beam.masses[0].x_m = 0.7: must be "
+                          "in [0, 0.5] (mass position along the beam [m])");
 }
 
 TEST(CliBadConfig, AMissingBeamSectionIsReportedWithTheOtherErrorsOfTheStructure) {
@@ -147,14 +143,9 @@ TEST(CliBadConfig, AMissingStructureIsReportedAtTheTopOfTheFile) {
 }
 
 TEST(CliBadConfig, AWrongTypeNamesTheTypeExpected) {
-    const auto r =
-        modes_on("wrong-type", "bad.toml",
-                 replaced(kBeamConfig, "density_kg_m3 = 2700.0", "density_kg_m3 = \"steel\""));
-    EXPECT_EQ(r.exit_code, 2) << r.output;
-    EXPECT_EQ(lines_naming(r.output, "bad.toml"),
-              std::vector<std::string>{"bad.toml:12:17: structure.beam.density_kg_m3 = \"steel\": "
-                                       "must be a number (beam density [kg/m^3])"})
-        << r.output;
+    expect_the_only_error("wrong-type", "density_kg_m3 = 2700.0", "density_kg_m3 = \"steel\"",
+                          "bad.toml:12:17: structure.beam.density_kg_m3 = \"steel\": "
+                          "must be a number (beam density [kg/m^3])");
 }
 
 TEST(CliBadConfig, TheReadmeExamplePrintsWhatTheReadmeShows) {
@@ -171,25 +162,17 @@ TEST(CliBadConfig, TheReadmeExamplePrintsWhatTheReadmeShows) {
 }
 
 TEST(CliBadConfig, ANegativeSeedIsAnError) {
-    const auto r = modes_on("seed", "bad.toml",
-                            replaced(kBeamConfig, "name = \"t\"", "name = \"t\"\nseed = -3"));
-    EXPECT_EQ(r.exit_code, 2) << r.output;
-    EXPECT_EQ(lines_naming(r.output, "bad.toml"),
-              std::vector<std::string>{
-                  "bad.toml:4:8: campaign.seed = -3: must be >= 0 (seed of the particle filling)"})
-        << r.output;
+    expect_the_only_error(
+        "seed", "name = \"t\"", "name = \"t\"\nseed = -3",
+        "bad.toml:4:8: campaign.seed = -3: must be >= 0 (seed of the particle filling)");
 }
 
 TEST(CliBadConfig, ASectionThickerThanItIsWideIsAnError) {
-    const auto r = modes_on("thick", "bad.toml",
-                            replaced(kBeamConfig, "thickness_m = 0.003", "thickness_m = 0.06"));
-    EXPECT_EQ(r.exit_code, 2) << r.output;
-    EXPECT_EQ(lines_naming(r.output, "bad.toml"),
-              std::vector<std::string>{
-                  "bad.toml:11:15: structure.beam.thickness_m = 0.06: must be <= width_m = 0.05 "
-                  "(section side along z, the shorter one; drive the stiff direction with "
-                  "excitation.direction = [0, 1, 0])"})
-        << r.output;
+    expect_the_only_error(
+        "thick", "thickness_m = 0.003", "thickness_m = 0.06",
+        "bad.toml:11:15: structure.beam.thickness_m = 0.06: must be <= width_m = 0.05 "
+        "(section side along z, the shorter one; drive the stiff direction with "
+        "excitation.direction = [0, 1, 0])");
 }
 
 /// A fixed-free chain of three 1 kg masses and 100 N/m springs, as Matrix Market files in

@@ -19,6 +19,19 @@ inline Support support(const std::string& name, double x_m, SupportKind kind) {
     return s;
 }
 
+/// 1 m x 40 mm x 5 mm steel strip, Euler-Bernoulli, 40 elements (E I = 87.5 N m^2 in z), with
+/// no supports and no points: the analytic cases add their own.
+inline BeamSpec steel_strip() {
+    BeamSpec b;
+    b.length_m = 1.0;
+    b.width_m = 0.04;
+    b.thickness_m = 0.005;
+    b.density_kg_m3 = 7850.0;
+    b.youngs_modulus_pa = 210e9;
+    b.min_elements = 40;
+    return b;
+}
+
 /// Paper 000 (Table 1) aluminium beam clamped at x = 0, without any attachment.
 inline BeamSpec paper000_bare_beam() {
     BeamSpec b;

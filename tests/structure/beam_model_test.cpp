@@ -11,6 +11,7 @@ namespace {
 
 using testing::bending_frequencies;
 using testing::euler_bernoulli_hz;
+using testing::steel_strip;
 using testing::support;
 
 // Converged cubic elements: 40 elements put the third mode's discretisation error near 1e-6,
@@ -18,17 +19,6 @@ using testing::support;
 constexpr double kAnalyticTolerance = 1e-3;
 constexpr int kModes = 30;  // enough to hold three weak-bending modes among the others
 constexpr int kAxisZ = 2;
-
-BeamSpec slender_steel_beam() {
-    BeamSpec b;
-    b.length_m = 1.0;
-    b.width_m = 0.04;
-    b.thickness_m = 0.005;
-    b.density_kg_m3 = 7850.0;
-    b.youngs_modulus_pa = 210e9;
-    b.min_elements = 40;
-    return b;
-}
 
 void expect_first_three(const BeamSpec& beam, const std::array<double, 3>& beta_l) {
     const LinearModel model = build_beam_model(beam, ExcitationSpec{});
@@ -42,25 +32,25 @@ void expect_first_three(const BeamSpec& beam, const std::array<double, 3>& beta_
 }
 
 TEST(BeamModel, CantileverMatchesEulerBernoulliRoots) {
-    BeamSpec b = slender_steel_beam();
+    BeamSpec b = steel_strip();
     b.supports = {support("root", 0.0, SupportKind::clamped)};
     expect_first_three(b, {1.8751, 4.6941, 7.8548});
 }
 
 TEST(BeamModel, SimplySupportedBeamMatchesMultiplesOfPi) {
-    BeamSpec b = slender_steel_beam();
+    BeamSpec b = steel_strip();
     b.supports = {support("a", 0.0, SupportKind::pinned), support("b", 1.0, SupportKind::pinned)};
     expect_first_three(b, {kPi, 2.0 * kPi, 3.0 * kPi});
 }
 
 TEST(BeamModel, ClampedClampedBeamMatchesEulerBernoulliRoots) {
-    BeamSpec b = slender_steel_beam();
+    BeamSpec b = steel_strip();
     b.supports = {support("a", 0.0, SupportKind::clamped), support("b", 1.0, SupportKind::clamped)};
     expect_first_three(b, {4.7300, 7.8532, 10.9956});
 }
 
 TEST(BeamModel, ClampedPinnedBeamMatchesEulerBernoulliRoots) {
-    BeamSpec b = slender_steel_beam();
+    BeamSpec b = steel_strip();
     b.supports = {support("a", 0.0, SupportKind::clamped), support("b", 1.0, SupportKind::pinned)};
     expect_first_three(b, {3.9266, 7.0686, 10.2102});
 }
@@ -73,7 +63,7 @@ TEST(BeamModel, ShortThickTimoshenkoBeamFollowsTimoshenkosFrequencyEquation) {
     // (6 % and 18.5 %).
     constexpr double kTimoshenkoTolerance = 5e-4;
     constexpr double kReductionTolerance = 5e-4;  // on 1 - f_T/f_EB: the same mesh error
-    BeamSpec b = slender_steel_beam();
+    BeamSpec b = steel_strip();
     b.length_m = 0.2;
     b.thickness_m = 0.04;
     b.width_m = 0.06;

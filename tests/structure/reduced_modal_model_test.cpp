@@ -178,12 +178,7 @@ TEST(ReducedModalModelRotation, ATipMomentRampTurnsTheCantileverTipByMLOverEI) {
     // decayed, q = c t / w^2 - 2 zeta c / w^3 per mode: the lag's share is
     // 2 zeta / (w_1 t) < 1e-6 at t = 2000 s, the rate q' = c / w^2 exact.
     constexpr double kLagAndRoundOff = 1e-6;
-    BeamSpec b;
-    b.length_m = 1.0;
-    b.width_m = 0.04;
-    b.thickness_m = 0.005;
-    b.density_kg_m3 = 7850.0;
-    b.youngs_modulus_pa = 210e9;
+    BeamSpec b = testing::steel_strip();
     b.min_elements = 20;
     b.supports = {testing::support("root", 0.0, SupportKind::clamped)};
     b.points = {NamedPoint{"tip", 1.0}};

@@ -28,15 +28,9 @@ constexpr double kEquationTolerance = 1e-5;
 // second-order terms and the modes the reduced model leaves out (response_helpers.hpp).
 constexpr double kNewmarkEstimateFactor = 1.5;
 
-/// 1 m x 40 mm x 5 mm steel strip, Euler-Bernoulli, 40 elements: E I = 87.5 N m^2 in z.
+/// The shared steel strip (E I = 87.5 N m^2 in z) with a tip and a middle point.
 BeamSpec steel_strip() {
-    BeamSpec b;
-    b.length_m = 1.0;
-    b.width_m = 0.04;
-    b.thickness_m = 0.005;
-    b.density_kg_m3 = 7850.0;
-    b.youngs_modulus_pa = 210e9;
-    b.min_elements = 40;
+    BeamSpec b = testing::steel_strip();
     b.points = {NamedPoint{"tip", 1.0}, NamedPoint{"middle", 0.5}};
     return b;
 }
