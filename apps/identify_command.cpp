@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "config/errors.hpp"
 #include "identification/damping_curve.hpp"
 #include "identification/file_error.hpp"
 #include "identification/plots.hpp"
@@ -26,8 +27,7 @@ namespace {
 namespace fs = std::filesystem;
 namespace id = sb::identification;
 
-/// Exit code of bad input (config, data, command line).
-constexpr int kExitBadInput = 2;
+using config::kExitBadInput;
 
 struct IdentifyArgs {
     std::string input;

@@ -2,8 +2,9 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
-#include "bench/config_errors.hpp"
+#include "config/errors.hpp"
 #include "identify_command.hpp"
+#include "keys_command.hpp"
 #include "modes_command.hpp"
 #include "run_command.hpp"
 
@@ -23,13 +24,14 @@ int main(int argc, char** argv) {
     sb::apps::register_run_command(app, exit_code);
     sb::apps::register_modes_command(app, exit_code);
     sb::apps::register_identify_command(app, exit_code);
+    sb::apps::register_keys_command(app, exit_code);
 
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         const int code = app.exit(e);
         // CLI11 returns 0 for --help and --version; any other parse error is bad input.
-        return code == 0 ? 0 : sb::bench::kExitBadInput;
+        return code == 0 ? 0 : sb::config::kExitBadInput;
     }
     return exit_code;
 }

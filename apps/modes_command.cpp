@@ -11,7 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "bench/config_errors.hpp"
+#include "config/errors.hpp"
 #include "load_config.hpp"
 #include "structure/linear_model.hpp"
 #include "structure/matrix_market.hpp"
@@ -24,6 +24,7 @@ struct ModesOptions {
     std::string config;
     std::string out_dir = ".";
     int count = 0;
+    std::vector<std::string> overrides;
 };
 
 void write_shapes_csv(const std::filesystem::path& file, const structure::LinearModel& model,
@@ -79,7 +80,7 @@ void print_modes(const bench::CampaignConfig& config, const structure::LinearMod
 
 int run_modes(const ModesOptions& options) {
     int exit_code = 0;
-    const auto config = load_config_or_report(options.config, exit_code);
+    const auto config = load_config_or_report(options.config, options.overrides, exit_code);
     if (!config) {
         return exit_code;
     }
@@ -89,10 +90,10 @@ int run_modes(const ModesOptions& options) {
         model = structure::build_linear_model(config->structure, config->base_dir);
     } catch (const structure::MatrixMarketError& e) {
         std::cerr << "shakerbench modes: " << e.what() << '\n';
-        return bench::kExitBadInput;  // an imported matrix file that cannot be read
+        return config::kExitBadInput;  // an imported matrix file that cannot be read
     } catch (const std::invalid_argument& e) {
         std::cerr << "shakerbench modes: " << e.what() << '\n';
-        return bench::kExitBadInput;  // a structure the config describes but cannot hold
+        return config::kExitBadInput;  // a structure the config describes but cannot hold
     }
     try {
         const auto basis = structure::compute_modes(model, config->structure.damping, count);
@@ -103,7 +104,7 @@ int run_modes(const ModesOptions& options) {
         std::cout << "\nMode shapes at the named points: " << file.string() << '\n';
     } catch (const std::exception& e) {
         std::cerr << "shakerbench modes: " << e.what() << '\n';
-        return bench::kExitFailure;  // the eigensolver or the output, not the input
+        return config::kExitFailure;  // the eigensolver or the output, not the input
     }
     return 0;
 }
@@ -123,6 +124,7 @@ void register_modes_command(CLI::App& app, int& exit_code) {
     cmd->add_option("-n,--count", options->count,
                     "number of modes (default: structure.modes of the config)")
         ->check(CLI::PositiveNumber);
+    add_set_option(*cmd, options->overrides);
     cmd->callback([options, &exit_code] { exit_code = run_modes(*options); });
 }
 

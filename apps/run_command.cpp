@@ -6,8 +6,8 @@
 #include <memory>
 
 #include "bench/campaign.hpp"
-#include "bench/config_errors.hpp"
-#include "bench/sweep_checkpoint.hpp"
+#include "config/errors.hpp"
+#include "core/text_file.hpp"
 #include "dem/solver.hpp"
 #include "identification/file_error.hpp"
 #include "load_config.hpp"
@@ -20,12 +20,14 @@ struct RunOptions {
     std::string out_dir;
     int threads = 0;
     bool quiet = false;
+    bool restart = false;
+    std::vector<std::string> overrides;
     std::string command_line;
 };
 
 int run(const RunOptions& options) {
     int exit_code = 0;
-    const auto config = load_config_or_report(options.config, exit_code);
+    const auto config = load_config_or_report(options.config, options.overrides, exit_code);
     if (!config) {
         return exit_code;
     }
@@ -35,8 +37,9 @@ int run(const RunOptions& options) {
     run.threads = options.threads;
     run.progress = options.quiet ? nullptr : &std::cerr;
     run.config_text = options.config.empty() ? std::string(bench::builtin_config_text())
-                                             : bench::read_file(options.config);
+                                             : read_text_file(options.config);
     run.command_line = options.command_line;
+    run.restart = options.restart;
     try {
         const auto summary = bench::run_campaign(*config, run);
         std::cout << "campaign " << config->name << ": " << summary.points << " points ("
@@ -47,20 +50,22 @@ int run(const RunOptions& options) {
                   << summary.wall_time_s << " s\n"
                   << "recording: " << run.out_dir.string() << '\n';
         return 0;
-    } catch (const bench::ConfigException& e) {
-        std::cerr << e.what() << "\nshakerbench run: the config cannot run a campaign.\n";
-        return bench::kExitBadInput;
+    } catch (const config::ConfigException& e) {
+        std::cerr << e.what()
+                  << "\nshakerbench run: the campaign cannot run; nothing was "
+                     "simulated.\n";
+        return config::kExitBadInput;
     } catch (const identification::FileError& e) {
         std::cerr << "shakerbench run: " << e.what() << '\n';
-        return bench::kExitBadInput;
+        return config::kExitBadInput;
     } catch (const dem::SimulationError& e) {
         std::cerr << "shakerbench run: simulation failed: " << e.what()
                   << "\nFinished points are kept in " << run.out_dir.string()
                   << "/checkpoints; fix the config and run again to resume.\n";
-        return bench::kExitFailure;
+        return config::kExitFailure;
     } catch (const std::exception& e) {
         std::cerr << "shakerbench run: " << e.what() << '\n';
-        return bench::kExitFailure;
+        return config::kExitFailure;
     }
 }
 
@@ -79,6 +84,10 @@ void register_run_command(CLI::App& app, int& exit_code) {
     cmd->add_option("-j,--threads", options->threads, "sweeps run in parallel (default: all cores)")
         ->check(CLI::NonNegativeNumber);
     cmd->add_flag("-q,--quiet", options->quiet, "no progress lines");
+    add_set_option(*cmd, options->overrides);
+    cmd->add_flag("--restart", options->restart,
+                  "discard the checkpoints and settled beds in the output directory and start "
+                  "over (needed when they were written by another config)");
     cmd->callback([options, &exit_code] {
         options->command_line = "shakerbench run";
         if (!options->config.empty()) options->command_line += " " + options->config;
@@ -86,6 +95,8 @@ void register_run_command(CLI::App& app, int& exit_code) {
         if (options->threads > 0) {
             options->command_line += " --threads " + std::to_string(options->threads);
         }
+        options->command_line += overrides_text(options->overrides);
+        if (options->restart) options->command_line += " --restart";
         exit_code = run(*options);
     });
 }

@@ -19,14 +19,16 @@
 
 #include "bench/arrangement.hpp"
 #include "bench/campaign_output.hpp"
-#include "bench/config_errors.hpp"
 #include "bench/coupled_specimen.hpp"
 #include "bench/driven_mode.hpp"
 #include "bench/frequency_grid.hpp"
 #include "bench/linear_estimate.hpp"
+#include "bench/resolved_config.hpp"
 #include "bench/specimen_plant.hpp"
 #include "bench/sweep_checkpoint.hpp"
+#include "config/errors.hpp"
 #include "control/controller.hpp"
+#include "core/text_file.hpp"
 #include "core/units.hpp"
 #include "dem/setup.hpp"
 #include "structure/frf.hpp"
@@ -63,20 +65,20 @@ std::string number_text(double v) {
 
 double particle_mass_kg(const DamperSpec& damper, std::uint64_t seed) {
     double mass = 0.0;
-    for (double r : dem::make_radii(damper.solver.particles, seed)) {
-        mass += damper.solver.particles.material.density_kg_m3 * 4.0 / 3.0 * kPi * r * r * r;
+    for (double r : dem::make_radii(damper.particles, seed)) {
+        mass += damper.particles.material.density_kg_m3 * 4.0 / 3.0 * kPi * r * r * r;
     }
     return mass;
 }
 
 /// Depth of a settled bed (random close packing about 0.6) on the enclosure floor [m].
 double bed_depth_m(const DamperSpec& damper, double mass_kg) {
-    const auto& e = damper.solver.enclosure;
+    const auto& e = damper.enclosure;
     const double floor_m2 = e.shape == dem::EnclosureShape::cylinder
                                 ? kPi * e.inner_diameter_m * e.inner_diameter_m / 4.0
                                 : e.length_x_m * e.length_y_m;
     constexpr double kPackingFraction = 0.6;
-    return std::min(e.height_m, mass_kg / damper.solver.particles.material.density_kg_m3 /
+    return std::min(e.height_m, mass_kg / damper.particles.material.density_kg_m3 /
                                     kPackingFraction / floor_m2);
 }
 
@@ -127,52 +129,59 @@ PreparedArrangement prepare(const CampaignConfig& config, const ArrangementSpec&
     return p;
 }
 
-/// Contact stiffness and DEM time step of a damper for a sweep (automatic when the config
-/// leaves normal_stiffness at 0): returns the time step [s] and sets the stiffness.
-double choose_stiffness(DamperSpec& damper, double level_g, double first_mode_hz,
-                        std::string& log) {
-    auto& contact = damper.solver.contact;
-    const auto& particles = damper.solver.particles;
+/// The contact stiffness and DEM time step of a damper in one sweep, and a line saying so.
+struct SweepStiffness {
+    double stiffness = 0.0;  ///< Hooke [N/m] or Hertz [N/m^1.5]
+    double dt_s = 0.0;       ///< DEM time step [s]
+    std::string log;
+};
+
+/// The given stiffness, or one chosen for the sweep's level (automatic), and the time step
+/// from the contact time.
+SweepStiffness choose_stiffness(const DamperSpec& damper, double level_g, double first_mode_hz) {
+    const ContactSpec& contact = damper.contact;
+    const auto& particles = damper.particles;
     const double d = particles.largest_diameter_m();
     const double mass = particles.material.density_kg_m3 * kPi * d * d * d / 6.0;
     dem::AutoStiffnessInput in;
     in.law = contact.normal;
     in.particle_diameter_m = d;
     in.density_kg_m3 = particles.material.density_kg_m3;
-    in.max_overlap_fraction = damper.max_overlap_fraction;
+    in.max_overlap_fraction = contact.max_overlap_fraction;
     in.level_m_s2 = std::sqrt(2.0) * g_to_m_s2(level_g);  // peak of the RMS target
     in.frequency_hz = first_mode_hz;
-    in.gap_m = damper.solver.enclosure.height_m;
+    in.gap_m = damper.enclosure.height_m;
     in.restitution = contact.particle_particle.restitution;
-    in.time_step_fraction = damper.time_step_fraction;
-    double dt = 0.0;
-    if (contact.normal_stiffness == 0.0) {
+    in.time_step_fraction = contact.time_step_fraction;
+    SweepStiffness out;
+    if (!contact.normal_stiffness) {
         const auto chosen = dem::auto_stiffness(in);
-        contact.normal_stiffness = chosen.stiffness;
-        dt = chosen.time_step_s;
-        log = "automatic: " + dem::describe(chosen, contact.normal);
+        out.stiffness = chosen.stiffness;
+        out.dt_s = chosen.time_step_s;
+        out.log = "automatic: " + dem::describe(chosen, contact.normal);
     } else {
+        out.stiffness = *contact.normal_stiffness;
         const double contact_time =
             contact.normal == dem::NormalLaw::hooke
-                ? dem::hooke_contact_time(0.5 * mass, contact.normal_stiffness,
+                ? dem::hooke_contact_time(0.5 * mass, out.stiffness,
                                           contact.particle_particle.restitution)
-                : dem::hertz_contact_time(0.5 * mass, contact.normal_stiffness,
+                : dem::hertz_contact_time(0.5 * mass, out.stiffness,
                                           dem::auto_stiffness(in).impact_speed_m_s);
-        dt = damper.time_step_fraction * contact_time;
-        log = "stiffness " + number_text(contact.normal_stiffness) + " (given), contact time " +
-              number_text(contact_time) + " s, time step " + number_text(dt) + " s";
+        out.dt_s = contact.time_step_fraction * contact_time;
+        out.log = "stiffness " + number_text(out.stiffness) + " (given), contact time " +
+                  number_text(contact_time) + " s, time step " + number_text(out.dt_s) + " s";
     }
-    return dt;
+    return out;
 }
 
 /// The settled bed of a damper in its mounting (gravity in the enclosure frame), from the
 /// out_dir/settled cache when present; written there with exact round-trip digits either way
 /// and read back, so a fresh and a resumed run start from the same numbers.
-dem::ParticleSet settled_particles(const DamperSpec& damper, const Eigen::Matrix3d& rotation,
-                                   const Eigen::Vector3d& gravity, std::uint64_t seed,
-                                   const fs::path& cache) {
+dem::ParticleSet settled_particles(const DamperSpec& damper, double stiffness,
+                                   const Eigen::Matrix3d& rotation, const Eigen::Vector3d& gravity,
+                                   std::uint64_t seed, const fs::path& cache) {
     if (!fs::exists(cache)) {
-        dem::SolverOptions local = damper.solver;
+        dem::SolverOptions local = damper.solver_options(stiffness);
         local.gravity_m_s2 = rotation.transpose() * gravity;
         local.track_energy = false;
         dem::ParticleSet settled;
@@ -206,6 +215,7 @@ struct Shared {
     std::atomic<long long> periods{0};
     int points_total = 0;
     std::chrono::steady_clock::time_point start;
+    std::string config_hash;  ///< of the resolved config: every checkpoint and bed carries it
 };
 
 std::string format_duration(double seconds) {
@@ -280,7 +290,7 @@ SweepCheckpoint run_sweep(const Sweep& sweep, Shared& shared, std::vector<std::s
 
     std::vector<MountedDamper> dampers;
     double dt_max = 1.0 / (256.0 * prepared.frequencies_hz.front());
-    for (DamperSpec damper : campaign.dampers) {
+    for (const DamperSpec& damper : campaign.dampers) {
         const DamperMounting mounting = damper_mounting(prepared.arrangement, damper);
         const Eigen::Matrix3d& rotation = mounting.rotation;
         MountedDamper mounted;
@@ -289,14 +299,17 @@ SweepCheckpoint run_sweep(const Sweep& sweep, Shared& shared, std::vector<std::s
         mounted.mount_rotation = rotation;
         mounted.offset_m = mounting.origin_m;
         if (damper.model == DamperSpec::Model::dem) {
-            std::string stiffness_log;
-            dt_max = std::min(dt_max, choose_stiffness(damper, sweep.level_g,
-                                                       prepared.first_mode_hz, stiffness_log));
-            log.push_back(damper.name + ": " + stiffness_log);
-            const auto settled =
-                settled_particles(damper, rotation, gravity, campaign.seed,
-                                  out_dir / "settled" / (sweep.key + "_" + damper.name + ".csv"));
-            dem::SolverOptions options = damper.solver;
+            const SweepStiffness chosen =
+                choose_stiffness(damper, sweep.level_g, prepared.first_mode_hz);
+            dt_max = std::min(dt_max, chosen.dt_s);
+            log.push_back(damper.name + ": " + chosen.log);
+            // The bed depends on the config: its file carries the config's hash, so another
+            // config never starts from it.
+            const auto settled = settled_particles(
+                damper, chosen.stiffness, rotation, gravity, campaign.seed,
+                out_dir / "settled" /
+                    (sweep.key + "_" + damper.name + "_" + shared.config_hash + ".csv"));
+            dem::SolverOptions options = damper.solver_options(chosen.stiffness);
             options.gravity_m_s2 = gravity;
             options.track_energy = false;  // the campaign measures damping from the FRF
             if (damper.locked) {
@@ -336,15 +349,16 @@ SweepCheckpoint run_sweep(const Sweep& sweep, Shared& shared, std::vector<std::s
 
     SweepCheckpoint checkpoint;
     if (fs::exists(checkpoint_file)) {
-        checkpoint = parse_checkpoint(read_file(checkpoint_file), checkpoint_file.string());
+        checkpoint = parse_checkpoint(read_text_file(checkpoint_file), checkpoint_file.string());
         shared.points_done += checkpoint.points_done;
     } else {
         // First point: the linear steady state at the first frequency, settled particles.
-        const double start = campaign.controller.initial_amplitude > 0.0
-                                 ? campaign.controller.initial_amplitude
+        const double start = campaign.controller.initial_amplitude
+                                 ? *campaign.controller.initial_amplitude
                                  : std::sqrt(2.0) * target_rms / linear_gain(frequencies.front());
         specimen.set_frequency(frequencies.front());
         specimen.start_from_linear_steady_state(start, 0.0);
+        checkpoint.config_hash = shared.config_hash;
         checkpoint.next_amplitude = start;
         checkpoint.state = specimen.state();
         const std::string text = serialize_checkpoint(checkpoint);
@@ -353,10 +367,8 @@ SweepCheckpoint run_sweep(const Sweep& sweep, Shared& shared, std::vector<std::s
         checkpoint = parse_checkpoint(text, checkpoint_file.string());
     }
 
-    control::ControllerOptions controller_options = campaign.controller;
-    if (controller_options.initial_amplitude <= 0.0) {
-        controller_options.initial_amplitude = 1.0;  // replaced by the warm start below
-    }
+    // Every point's start is set below (set_start_amplitude).
+    const control::ControllerOptions& controller_options = campaign.controller;
     for (int i = checkpoint.points_done; i < static_cast<int>(frequencies.size()); ++i) {
         const double f = frequencies[static_cast<std::size_t>(i)];
         specimen.set_frequency(f);
@@ -405,6 +417,7 @@ SweepCheckpoint run_sweep(const Sweep& sweep, Shared& shared, std::vector<std::s
         }
         checkpoint.rows.push_back(row);
         checkpoint.control_log.push_back(control_log_line(sweep, result));
+        checkpoint.config_hash = shared.config_hash;
         checkpoint.points_done = i + 1;
         checkpoint.next_amplitude = result.amplitude_final;
         checkpoint.state = specimen.state();
@@ -414,6 +427,35 @@ SweepCheckpoint run_sweep(const Sweep& sweep, Shared& shared, std::vector<std::s
         report_progress(shared, sweep, f, result);
     }
     return checkpoint;
+}
+
+/// Refuses to resume from checkpoints another config wrote: they would be taken as this
+/// config's results.
+void refuse_foreign_checkpoints(const fs::path& out_dir, const std::string& hash) {
+    const fs::path dir = out_dir / "checkpoints";
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) return;
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        if (entry.is_regular_file() && entry.path().extension() == ".txt") {
+            files.push_back(entry.path());
+        }
+    }
+    std::sort(files.begin(), files.end());
+    std::vector<config::ConfigError> problems;
+    for (const auto& file : files) {
+        const std::string found = checkpoint_config_hash(read_text_file(file));
+        if (found == hash) continue;
+        config::ConfigError e;
+        e.file = file.string();
+        e.key_path = "config_hash";
+        e.value = found.empty() ? "(none: an older checkpoint format)" : "\"" + found + "\"";
+        e.constraint = "was written by another config; this config's hash is \"" + hash + "\"";
+        e.meaning = "nothing was simulated: run again with --restart to discard " +
+                    out_dir.string() + "'s checkpoints and settled beds, or give another --out";
+        problems.push_back(std::move(e));
+    }
+    if (!problems.empty()) throw config::ConfigException(std::move(problems));
 }
 
 std::string sweep_key(const std::string& arrangement, double level_g) {
@@ -430,6 +472,7 @@ structure::StructureSpec arrangement_structure(const CampaignConfig& config,
                                                const ArrangementSpec& arrangement,
                                                bool all_particles_rigid) {
     structure::StructureSpec spec = config.structure;
+    spec.beam = spec.beam.resolved();  // masses at named points placed there
     spec.gravity_m_s2 = arrangement_gravity(arrangement);
     for (const auto& d : config.campaign.dampers) {
         const DamperMounting mounting = damper_mounting(arrangement, d);
@@ -459,21 +502,31 @@ structure::StructureSpec arrangement_structure(const CampaignConfig& config,
 CampaignSummary run_campaign(const CampaignConfig& config, const CampaignRunOptions& options) {
     const auto started = std::chrono::steady_clock::now();
     const CampaignSpec& campaign = config.campaign;
-    std::vector<ConfigError> problems;
+    std::vector<config::ConfigError> problems;
     if (campaign.levels_g.empty()) {
         problems.push_back({config.source, 0, 0, "campaign.levels_g", "", "is required",
                             "target RMS levels [g]: a campaign needs at least one"});
     }
-    if (campaign.arrangements.empty()) {
+    const std::vector<ArrangementSpec> arrangements = campaign.selected_arrangements();
+    if (arrangements.empty()) {
         problems.push_back({config.source, 0, 0, "arrangements", "", "is required",
                             "at least one [arrangements.NAME] table"});
     }
     if (!problems.empty()) {
-        throw ConfigException(problems);
+        throw config::ConfigException(problems);
+    }
+    const std::string hash = config_hash(config);
+    if (options.restart) {
+        // Everything computed for another config, or for this one from the start.
+        for (const char* dir : {"checkpoints", "settled", "series"}) {
+            fs::remove_all(options.out_dir / dir);
+        }
+    } else {
+        refuse_foreign_checkpoints(options.out_dir, hash);
     }
 
     std::vector<PreparedArrangement> prepared;
-    for (const auto& a : campaign.arrangements) {
+    for (const auto& a : arrangements) {
         prepared.push_back(prepare(config, a));
     }
     std::vector<Sweep> sweeps;
@@ -488,6 +541,7 @@ CampaignSummary run_campaign(const CampaignConfig& config, const CampaignRunOpti
     shared.config = &config;
     shared.options = &options;
     shared.start = started;
+    shared.config_hash = hash;
     for (const auto& s : sweeps) {
         shared.points_total += static_cast<int>(s.prepared->frequencies_hz.size());
     }
@@ -549,6 +603,7 @@ CampaignSummary run_campaign(const CampaignConfig& config, const CampaignRunOpti
         }
     }
     output.threads = threads;
+    output.config_hash = hash;
     write_campaign_output(output);
     summary.wall_time_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -16,6 +16,9 @@ struct CampaignRunOptions {
     std::ostream* progress = nullptr;  ///< progress lines, or none
     std::string config_text;           ///< the config as read, copied into the output
     std::string command_line;          ///< for the provenance file
+    /// Discard the checkpoints and settled beds found in out_dir and start over; without it
+    /// checkpoints of another config (another hash) are refused.
+    bool restart = false;
 };
 
 struct CampaignSummary {
@@ -37,8 +40,9 @@ structure::StructureSpec arrangement_structure(const CampaignConfig& config,
 
 /// Runs (or resumes) the campaign of `config` into options.out_dir. Finished points found in
 /// out_dir/checkpoints are not recomputed; the final files are the same as an uninterrupted
-/// run's. Throws ConfigException when the config cannot run a campaign (no levels, no
-/// arrangement), dem::SimulationError when a guard fires, std::runtime_error otherwise.
+/// run's. Throws config::ConfigException when the config cannot run a campaign (no levels,
+/// no arrangement) or when out_dir holds checkpoints of another config (nothing simulated),
+/// dem::SimulationError when a guard fires, std::runtime_error otherwise.
 CampaignSummary run_campaign(const CampaignConfig& config, const CampaignRunOptions& options);
 
 }  // namespace sb::bench

@@ -1,27 +1,33 @@
-// The whole campaign config: what `shakerbench` reads from one TOML file.
+// The whole campaign config: what `shakerbench` reads from one TOML file, every value
+// addressable by its dotted path.
 #pragma once
 
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "bench/campaign_spec.hpp"
+#include "config/source_map.hpp"
+#include "config/value.hpp"
 #include "structure/spec.hpp"
 
 namespace sb::bench {
 
-/// Everything a config file describes, in SI, validated.
+/// Everything a config file describes, in SI, validated. Its keys are declared in
+/// bench/config_schema.cpp.
 struct CampaignConfig {
-    std::string name;         ///< [campaign] name
-    std::string description;  ///< [campaign] description
+    std::string name = "campaign";  ///< [campaign] name
+    std::string description;        ///< [campaign] description
     structure::StructureSpec structure;
     CampaignSpec campaign;           ///< levels, grid, arrangements, dampers, controller, output
     std::string source;              ///< file name (or "<built-in ...>") for messages
     std::filesystem::path base_dir;  ///< relative paths in the config resolve here
+    config::SourceMap where;         ///< where each value came from: the file, the overrides
 };
 
 /// Reads and validates a config file; every problem found is thrown at once as
-/// ConfigException (file:line:col: key = value: constraint (meaning)).
+/// config::ConfigException (file:line:col: key = value: constraint (meaning)).
 CampaignConfig load_campaign_config(const std::filesystem::path& path);
 
 /// The same from text in memory; `name` stands for the file in messages.
@@ -30,5 +36,25 @@ CampaignConfig load_campaign_config_text(std::string_view text, const std::strin
 /// The built-in default campaign (configs/paper000-h0.toml, compiled in).
 std::string_view builtin_config_text();
 inline constexpr const char* kBuiltinConfigName = "<built-in configs/paper000-h0.toml>";
+
+/// The value at a dotted path ("dampers.pd.contact.sliding_friction",
+/// "structure.beam.masses[1].mass_kg") as the bench uses it; std::monostate for an automatic
+/// value. Throws config::ConfigException when the path names no value.
+config::Value get_value(const CampaignConfig& config, std::string_view path);
+
+/// Sets the value at `path` as if the file had held it: checked against its declaration and
+/// with every check across keys, else config::ConfigException and nothing changed. `origin`
+/// names where the value came from in messages ("--set", "calibration").
+void set_value(CampaignConfig& config, std::string_view path, config::Value value,
+               const std::string& origin);
+
+/// The same with the value as command-line text (0.45, linear-steady-state, [0, 0, 1]).
+void set_value_text(CampaignConfig& config, std::string_view path, std::string_view text,
+                    const std::string& origin);
+
+/// Applies `KEY=VALUE` overrides in order, each checked as it is applied (`--set`); the
+/// first that fails throws config::ConfigException naming its key and `origin`.
+void apply_overrides(CampaignConfig& config, const std::vector<std::string>& assignments,
+                     const std::string& origin = "--set");
 
 }  // namespace sb::bench

@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "bench/resolved_config.hpp"
-#include "bench/sweep_checkpoint.hpp"
+#include "core/text_file.hpp"
 #include "identification/damping_curve.hpp"
 #include "identification/plots.hpp"
 #include "identification/recording_io.hpp"
@@ -74,6 +74,7 @@ void write_provenance(const CampaignOutput& output) {
     text << "date = " << toml_string(utc_now()) << '\n';
     text << "threads = " << output.threads << '\n';
     text << "config = " << toml_string(output.config->source) << '\n';
+    text << "config_hash = " << toml_string(output.config_hash) << '\n';
     text << "command = " << toml_string(output.options->command_line) << "\n\n";
     for (const auto& sweep : output.sweeps) {
         text << "[sweeps." << toml_string(sweep.key) << "]\n";
@@ -155,8 +156,7 @@ void write_campaign_output(const CampaignOutput& output) {
     }
     write_control_log(output);
     write_file_atomically(out_dir / "config.toml", output.options->config_text);
-    write_file_atomically(out_dir / "config.resolved.toml",
-                          resolved_config_toml(*output.config, output.options->config_text));
+    write_file_atomically(out_dir / "config.resolved.toml", resolved_config_toml(*output.config));
     write_provenance(output);
     if (output.config->campaign.output.plots) {
         const auto plots = id::write_plots(out_dir, levels);

@@ -31,6 +31,7 @@ struct CampaignOutput {
     std::vector<std::string> channel_points;  ///< control point first
     std::vector<SweepRecord> sweeps;          ///< in campaign order
     int threads = 1;
+    std::string config_hash;  ///< of the resolved config
 };
 
 /// Writes every output file of the campaign into options->out_dir.

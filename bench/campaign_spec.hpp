@@ -1,11 +1,17 @@
 // What a stepped-sine campaign runs: arrangements x levels x frequencies, dampers, controller.
+// The config keys that fill these structs are declared once, in bench/config_schema.cpp.
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "control/options.hpp"
+#include "core/violation.hpp"
 #include "dem/options.hpp"
 #include "dem/setup.hpp"
 
@@ -15,6 +21,8 @@ namespace sb::bench {
 /// oscillating horizontally or vertically, and the damper axis at an angle to the motion.
 struct ArrangementSpec {
     enum class Oscillation { horizontal, vertical };
+    static constexpr std::pair<Oscillation, std::string_view> kOscillationNames[] = {
+        {Oscillation::horizontal, "horizontal"}, {Oscillation::vertical, "vertical"}};
     std::string name;  ///< e.g. "H-0", "V-45"
     Oscillation oscillation = Oscillation::horizontal;
     double damper_angle_deg = 0.0;  ///< angle between the damper axis and the motion [deg]
@@ -25,10 +33,16 @@ struct ArrangementSpec {
     /// Further displacement of the enclosure's mounting face (a spacer, a side mount),
     /// structure frame [m].
     Eigen::Vector3d mount_lift_m{0.0, 0.0, 0.0};
+
+    /// Constraints across keys (the wedge tilts the damper by 45 deg).
+    [[nodiscard]] Violations validate() const;
 };
 
 /// The frequency grid of every sweep: given, or built around the first mode.
 struct FrequencyGridSpec {
+    enum class Direction { up, down };
+    static constexpr std::pair<Direction, std::string_view> kDirectionNames[] = {
+        {Direction::up, "up"}, {Direction::down, "down"}};
     std::vector<double> values_hz;  ///< explicit grid; empty: built around the first mode
     double low_ratio = 0.85;        ///< lowest frequency / first natural frequency [-]
     double high_ratio = 1.15;       ///< highest frequency / first natural frequency [-]
@@ -36,12 +50,53 @@ struct FrequencyGridSpec {
     /// Damping ratio used to place the built grid: points equally spaced in the phase of a
     /// single mode with this damping, hence denser near resonance [-].
     double grid_damping_ratio = 0.03;
-    bool descending = false;  ///< step downward instead of upward
+    Direction direction = Direction::up;  ///< step upward or downward
+
+    /// Constraints across keys (high_ratio above low_ratio).
+    [[nodiscard]] Violations validate() const;
+};
+
+/// The contact law of a damper as the config gives it; the DEM's ContactOptions follow from
+/// it per sweep (contact_options()), after every override.
+struct ContactSpec {
+    dem::NormalLaw normal = dem::NormalLaw::hooke;
+    dem::DampingLaw damping = dem::DampingLaw::restitution;
+    dem::TangentialLaw tangential = dem::TangentialLaw::directional_coulomb;
+    dem::RollingLaw rolling = dem::RollingLaw::constant_torque;
+    /// Hooke [N/m] or Hertz [N/m^1.5]; absent: chosen per sweep from max_overlap_fraction at
+    /// the largest expected impact speed.
+    std::optional<double> normal_stiffness;
+    double tangential_stiffness_ratio = 2.0 / 7.0;
+    double slip_regularisation_m_s = 1e-4;
+    dem::PairProperties particle_particle{};
+    /// Particle-wall coefficients; absent: the particle-particle ones (resolved when the
+    /// DEM options are made, so a changed particle value carries over).
+    std::optional<double> wall_restitution;
+    std::optional<double> wall_sliding_friction;
+    std::optional<double> wall_rolling_friction;
+    dem::Material wall_material{};
+    /// Automatic stiffness: largest overlap as a fraction of the diameter at the largest
+    /// expected impact speed [-].
+    double max_overlap_fraction = 0.01;
+    double time_step_fraction = 1.0 / 20.0;  ///< DEM step / contact time [-]
+
+    /// The particle-wall coefficients in use.
+    [[nodiscard]] dem::PairProperties particle_wall() const;
+    /// The DEM contact options with `normal_stiffness` (the given or the chosen one).
+    [[nodiscard]] dem::ContactOptions contact_options(double normal_stiffness) const;
 };
 
 /// A particle damper attached to the structure.
 struct DamperSpec {
     enum class Model { dem, rigid };
+    static constexpr std::pair<Model, std::string_view> kModelNames[] = {{Model::dem, "dem"},
+                                                                         {Model::rigid, "rigid"}};
+    /// How the bed is filled before it settles: random insertion into the whole cavity
+    /// (loose beds, up to a solid fraction of about 0.35) or pouring in batches that settle
+    /// under gravity (dense beds such as paper 002's 90 % fill).
+    enum class Fill { random, pour };
+    static constexpr std::pair<Fill, std::string_view> kFillNames[] = {{Fill::random, "random"},
+                                                                       {Fill::pour, "pour"}};
     std::string name;
     std::string point;  ///< named point of the structure it is attached to
     /// Enclosure frame origin (inner bottom centre) relative to the point, structure frame,
@@ -58,16 +113,20 @@ struct DamperSpec {
     bool locked = false;
     /// dem: particles simulated; rigid: particles replaced by an equal rigid mass.
     Model model = Model::dem;
-    dem::SolverOptions solver;  ///< particles, enclosure, contact law (gravity set per arrangement)
-    /// Automatic stiffness when solver.contact.normal_stiffness is 0: largest overlap as a
-    /// fraction of the diameter at the largest expected impact speed [-].
-    double max_overlap_fraction = 0.01;
-    double time_step_fraction = 1.0 / 20.0;  ///< DEM step / contact time [-]
-    dem::SettleOptions settle;
-    /// How the bed is filled before it settles: random insertion into the whole cavity
-    /// (loose beds, up to a solid fraction of about 0.35) or pouring in batches that settle
-    /// under gravity (dense beds such as paper 002's 90 % fill).
-    enum class Fill { random, pour } fill = Fill::random;
+    int threads = 1;                      ///< OpenMP threads of this damper's DEM
+    double guard_overlap_fraction = 0.5;  ///< overlap / radius beyond which the run stops [-]
+    dem::EnclosureOptions enclosure{};
+    dem::ParticleOptions particles{};
+    ContactSpec contact{};
+    dem::SettleOptions settle{};
+    Fill fill = Fill::random;
+
+    /// The DEM options of this damper with the contact stiffness `normal_stiffness`; gravity
+    /// is the caller's.
+    [[nodiscard]] dem::SolverOptions solver_options(double normal_stiffness) const;
+    /// Constraints across keys, as the DEM module checks them: keys relative to
+    /// dem::SolverOptions under "solver." and to dem::SettleOptions under "settle.".
+    [[nodiscard]] Violations validate() const;
 };
 
 /// What a campaign writes besides points.csv and damping.csv.
@@ -79,15 +138,6 @@ struct OutputSpec {
 };
 
 struct CampaignSpec {
-    std::vector<double> levels_g;  ///< target RMS levels at the control point [g]
-    std::vector<ArrangementSpec> arrangements;
-    FrequencyGridSpec frequencies;
-    std::string control_point;                 ///< named point whose acceleration is controlled
-    std::vector<std::string> response_points;  ///< other recorded points (acceleration)
-    std::vector<DamperSpec> dampers;
-    control::ControllerOptions controller;
-    OutputSpec output;
-    std::uint64_t seed = 1;  ///< particle filling
     /// How the structure starts every point after the first of a sweep (the first always
     /// starts from the linear steady state, the particles from their settled bed; later
     /// points keep the particles' state):
@@ -98,12 +148,37 @@ struct CampaignSpec {
     /// - equivalent_steady_state: that state scaled in amplitude and phase to the response
     ///   the previous point's equivalent driven mode predicts (bench/driven_mode.hpp).
     enum class PointStart { previous_state, linear_steady_state, equivalent_steady_state };
+    static constexpr std::pair<PointStart, std::string_view> kPointStartNames[] = {
+        {PointStart::previous_state, "previous-state"},
+        {PointStart::equivalent_steady_state, "equivalent-steady-state"},
+        {PointStart::linear_steady_state, "linear-steady-state"}};
+
+    std::vector<double> levels_g;  ///< target RMS levels at the control point [g]
+    /// Every arrangement the config defines, in file order.
+    std::vector<ArrangementSpec> arrangements;
+    /// The names of the arrangements to run, in order; empty: all defined.
+    std::vector<std::string> arrangement_selection;
+    FrequencyGridSpec frequencies;
+    std::string control_point = "damper";      ///< named point whose acceleration is controlled
+    std::vector<std::string> response_points;  ///< other recorded points (acceleration)
+    std::vector<DamperSpec> dampers;
+    /// The controller; without an initial amplitude every sweep starts from the linear model.
+    control::ControllerOptions controller = [] {
+        control::ControllerOptions options;
+        options.initial_amplitude.reset();
+        return options;
+    }();
+    OutputSpec output;
+    std::uint64_t seed = 1;  ///< particle filling
     PointStart point_start = PointStart::previous_state;
     /// When the controller changes the amplitude within a point by the ratio r, the
     /// structure's harmonic response is scaled by r about its mean over the last period
     /// (SpecimenPlant): exact for a linear specimen, and it spares a particle-damped beam the
     /// slow transient (several periods per 1/(2 pi zeta)) that the jump would otherwise start.
     bool scale_response_on_update = true;
+
+    /// The arrangements to run, in order (the selection, or every one defined).
+    [[nodiscard]] std::vector<ArrangementSpec> selected_arrangements() const;
 };
 
 }  // namespace sb::bench

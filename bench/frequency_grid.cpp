@@ -40,7 +40,7 @@ std::vector<double> frequency_grid(const FrequencyGridSpec& spec, double first_m
         }
     }
     std::sort(grid.begin(), grid.end());
-    if (spec.descending) {
+    if (spec.direction == FrequencyGridSpec::Direction::down) {
         std::reverse(grid.begin(), grid.end());
     }
     return grid;

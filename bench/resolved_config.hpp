@@ -1,16 +1,22 @@
-// The campaign config with every default filled in, as a loadable TOML file.
+// The campaign config as run: every value written out, its canonical text and its hash.
 #pragma once
 
 #include <string>
-#include <string_view>
 
 #include "bench/campaign_config.hpp"
 
 namespace sb::bench {
 
-/// TOML text of `config` with every campaign, arrangement, damper, controller and output key
-/// written out, defaults included; the [structure] tables are copied from `raw_text` (the
-/// config as read). Loading the text gives the same campaign.
-std::string resolved_config_toml(const CampaignConfig& config, std::string_view raw_text);
+/// TOML text of `config` with every key that applies written out from the typed model,
+/// defaults included ("automatic" for values the bench chooses). Loading it gives the same
+/// campaign and the same config_hash().
+std::string resolved_config_toml(const CampaignConfig& config);
+
+/// Every resolved value, one sorted `path = value` line each (config::canonical_text).
+std::string canonical_config_text(const CampaignConfig& config);
+
+/// 16 hexadecimal digits identifying the resolved config: the same hash, the same numbers.
+/// Independent of key order, comments and formatting in the file.
+std::string config_hash(const CampaignConfig& config);
 
 }  // namespace sb::bench

@@ -1,14 +1,13 @@
 // Sweep checkpoints: exact text form of a sweep's progress and state.
 #include "bench/sweep_checkpoint.hpp"
 
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 namespace sb::bench {
 namespace {
 
-constexpr const char* kMagic = "shakerbench-sweep-checkpoint 1";
+constexpr const char* kMagic = "shakerbench-sweep-checkpoint 2";
 
 class Writer {
   public:
@@ -111,6 +110,7 @@ Eigen::VectorXd read_vector(Reader& r, const char* key) {
 std::string serialize_checkpoint(const SweepCheckpoint& c) {
     Writer w;
     w.key(kMagic).end();
+    w.key("config_hash").text(c.config_hash).end();
     w.key("points_done").integer(c.points_done).end();
     w.key("next_amplitude").num(c.next_amplitude).end();
     write_vector(w, "q", c.state.q);
@@ -157,6 +157,11 @@ SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& fil
     Reader r(text, file_name);
     SweepCheckpoint c;
     r.line(kMagic);
+    {
+        r.line("config_hash");
+        const auto tab = r.current().find('\t');
+        c.config_hash = tab == std::string::npos ? "" : r.current().substr(tab + 1);
+    }
     {
         auto words = r.line("points_done");
         c.points_done = static_cast<int>(r.integer(words));
@@ -232,27 +237,12 @@ SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& fil
     return c;
 }
 
-void write_file_atomically(const std::filesystem::path& file, const std::string& text) {
-    const auto temporary = file.string() + ".partial";
-    {
-        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        out << text;
-        out.flush();
-        if (!out) {
-            throw std::runtime_error(temporary + ": cannot be written");
-        }
-    }
-    std::filesystem::rename(temporary, file);
-}
-
-std::string read_file(const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) {
-        throw std::runtime_error(file.string() + ": cannot be read");
-    }
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
+std::string checkpoint_config_hash(const std::string& text) {
+    std::istringstream in(text);
+    std::string line;
+    if (!std::getline(in, line) || line != kMagic || !std::getline(in, line)) return {};
+    const std::string key = "config_hash\t";
+    return line.rfind(key, 0) == 0 ? line.substr(key.size()) : std::string();
 }
 
 }  // namespace sb::bench

@@ -11,6 +11,9 @@
 namespace sb::bench {
 
 struct SweepCheckpoint {
+    /// Hash of the resolved config that wrote it (bench/resolved_config.hpp): a checkpoint
+    /// is only ever resumed by the same config.
+    std::string config_hash;
     int points_done = 0;          ///< finished frequencies of the sweep
     double next_amplitude = 0.0;  ///< the warm-start amplitude the last point ended with
     SpecimenState state;          ///< the specimen after the last finished point
@@ -25,11 +28,8 @@ std::string serialize_checkpoint(const SweepCheckpoint& checkpoint);
 /// file and line.
 SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& file_name);
 
-/// Writes `text` to `file` through a temporary file and a rename, so an interruption leaves
-/// either the old or the new file, never half of one.
-void write_file_atomically(const std::filesystem::path& file, const std::string& text);
-
-/// The whole content of a file.
-std::string read_file(const std::filesystem::path& file);
+/// The config hash a checkpoint's text was written with; empty when the text has none (a
+/// checkpoint of an older format, or not a checkpoint).
+std::string checkpoint_config_hash(const std::string& text);
 
 }  // namespace sb::bench

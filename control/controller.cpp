@@ -125,7 +125,14 @@ AmplitudeController::AmplitudeController(const ControllerOptions& options) : opt
 
 double AmplitudeController::start_amplitude(double target_rms) const {
     if (forced_start_ > 0.0) return forced_start_;
-    if (previous_amplitude_ <= 0.0) return options_.initial_amplitude;
+    if (previous_amplitude_ <= 0.0) {
+        if (!options_.initial_amplitude) {
+            throw std::logic_error(
+                "AmplitudeController: no start amplitude: give initial_amplitude or call "
+                "set_start_amplitude() before the first point of a sweep");
+        }
+        return *options_.initial_amplitude;
+    }
     // Warm start: the previous amplitude scaled by the ratio the previous point would still
     // have needed to reach this target.
     return limit_step(previous_amplitude_,

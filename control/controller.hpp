@@ -23,7 +23,8 @@ class AmplitudeController {
 
     /// Amplitude the next point starts from: the previous point's amplitude times
     /// target_rms / its recorded RMS (limited to max_step_factor and the bounds), or
-    /// initial_amplitude before the first point or after reset().
+    /// initial_amplitude before the first point or after reset() (std::logic_error when it is
+    /// absent and no start was set).
     [[nodiscard]] double start_amplitude(double target_rms) const;
 
     /// Overrides the warm start: the next point starts exactly at `amplitude`.

@@ -50,12 +50,16 @@ Violations ControllerOptions::validate() const {
                        "must be > min_amplitude = " + format_value(min_amplitude),
                        "upper amplitude bound"});
     }
-    require_positive(out, "initial_amplitude", initial_amplitude, "amplitude of the first point");
-    if (std::isfinite(initial_amplitude) &&
-        (initial_amplitude < min_amplitude || initial_amplitude > max_amplitude)) {
-        out.push_back({"initial_amplitude", format_value(initial_amplitude),
-                       "must be in [min_amplitude, max_amplitude]",
-                       "amplitude of the first point"});
+    if (initial_amplitude) {
+        const double a = *initial_amplitude;
+        require_positive(out, "initial_amplitude", a, "amplitude of the first point");
+        if (std::isfinite(a) && a > 0.0 && (a < min_amplitude || a > max_amplitude)) {
+            out.push_back({"initial_amplitude", format_value(a),
+                           "must be in [min_amplitude, max_amplitude] = [" +
+                               format_value(min_amplitude) + ", " + format_value(max_amplitude) +
+                               "]",
+                           "amplitude of the first point"});
+        }
     }
     if (!(std::isfinite(max_step_factor) && max_step_factor > 1.0)) {
         out.push_back({"max_step_factor", format_value(max_step_factor), "must be > 1",

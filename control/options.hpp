@@ -2,6 +2,7 @@
 #pragma once
 
 #include <limits>
+#include <optional>
 
 #include "core/violation.hpp"
 
@@ -26,8 +27,9 @@ struct ControllerOptions {
     int max_periods = 60;
     /// Periods re-run at the closest amplitude after a failure; those are recorded [periods].
     int closest_rerun_periods = 4;
-    /// Amplitude of the first point (later points warm-start from the previous one).
-    double initial_amplitude = 1.0;
+    /// Amplitude of the first point (later points warm-start from the previous one); absent:
+    /// the caller gives every sweep's start with AmplitudeController::set_start_amplitude().
+    std::optional<double> initial_amplitude = 1.0;
     /// Lower bound of the amplitude (the amplitude is always > 0).
     double min_amplitude = 0.0;
     /// Upper bound of the amplitude (may be infinite).

@@ -20,9 +20,7 @@ std::string ContactLaw::describe() const {
     return s;
 }
 
-ContactLaw make_contact_law(const ContactOptions& o, Violations& violations) {
-    const Violations v = o.validate();
-    violations.insert(violations.end(), v.begin(), v.end());
+ContactLaw make_contact_law(const ContactOptions& o) {
     ContactLaw law;
     if (o.normal == NormalLaw::hooke) {
         law.normal = Hooke{};

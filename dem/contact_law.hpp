@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <variant>
 
 #include "dem/options.hpp"
@@ -219,6 +221,25 @@ struct ComposedLaw {
     }
 };
 
+// ------------------------------------------------------------ the registry
+
+/// The names of each slot's choices, one row per piece (the config reads and writes these).
+/// `restitution` is not a piece: it picks the dashpot that matches the normal law.
+inline constexpr std::pair<NormalLaw, std::string_view> kNormalLawNames[] = {
+    {NormalLaw::hooke, Hooke::kName}, {NormalLaw::hertz, Hertz::kName}};
+inline constexpr std::pair<DampingLaw, std::string_view> kDampingLawNames[] = {
+    {DampingLaw::restitution, "restitution"},
+    {DampingLaw::none, NoDamping::kName},
+    {DampingLaw::linear_dashpot, LinearDashpot::kName},
+    {DampingLaw::hertz_dashpot, HertzDashpot::kName}};
+inline constexpr std::pair<TangentialLaw, std::string_view> kTangentialLawNames[] = {
+    {TangentialLaw::directional_coulomb, DirectionalCoulomb::kName},
+    {TangentialLaw::coulomb_spring, CoulombSpring::kName},
+    {TangentialLaw::none, NoFriction::kName}};
+inline constexpr std::pair<RollingLaw, std::string_view> kRollingLawNames[] = {
+    {RollingLaw::constant_torque, ConstantRollingTorque::kName},
+    {RollingLaw::none, NoRolling::kName}};
+
 /// A composed contact law.
 struct ContactLaw {
     NormalPiece normal{};
@@ -228,8 +249,9 @@ struct ContactLaw {
     std::string describe() const;
 };
 
-/// Builds the law from options; incompatible pieces are reported as violations naming both.
-ContactLaw make_contact_law(const ContactOptions& options, Violations& violations);
+/// Builds the law from options (ContactOptions::validate() reports incompatible pieces,
+/// naming both).
+ContactLaw make_contact_law(const ContactOptions& options);
 
 /// Effective radius R_e of a Hertz contact whose relative principal radii of curvature are
 /// r_x and r_y [m] (1/r = sum of both surfaces' curvatures in that direction, concave < 0),

@@ -35,7 +35,7 @@ Violations ParticleOptions::validate() const {
     } else {
         double sum = 0.0;
         for (std::size_t k = 0; k < size_distribution.size(); ++k) {
-            const std::string key = "size_distribution." + std::to_string(k);
+            const std::string key = "size_distribution[" + std::to_string(k) + "]";
             require_positive(out, key + ".diameter_m", size_distribution[k].diameter_m,
                              "particle diameter [m]");
             require_positive(out, key + ".number_fraction", size_distribution[k].number_fraction,
@@ -116,7 +116,7 @@ Violations EnclosureOptions::validate() const {
     for (std::size_t k = 0; k < plates.size(); ++k) {
         const auto& p = plates[k];
         if (!(p.min_corner_m.array() < p.max_corner_m.array()).all()) {
-            out.push_back({"plates." + std::to_string(k), "min_corner_m >= max_corner_m",
+            out.push_back({"plates[" + std::to_string(k) + "]", "min_corner_m >= max_corner_m",
                            "min_corner_m < max_corner_m on every axis", "plate extent [m]"});
         }
     }
@@ -129,8 +129,8 @@ Violations LockOptions::validate() const {
     require_non_negative(out, "release_time_s", release_time_s, "release time [s]");
     for (std::size_t k = 0; k < particle_ids.size(); ++k) {
         if (particle_ids[k] < 0) {
-            out.push_back({"particle_ids." + std::to_string(k), std::to_string(particle_ids[k]),
-                           "must be >= 0", "locked particle id"});
+            out.push_back({"particle_ids[" + std::to_string(k) + "]",
+                           std::to_string(particle_ids[k]), "must be >= 0", "locked particle id"});
         }
     }
     return out;
@@ -144,7 +144,7 @@ Violations SolverOptions::validate() const {
     append_prefixed(out, "lock", lock.validate());
     for (std::size_t k = 0; k < lock.particle_ids.size(); ++k) {
         if (lock.particle_ids[k] >= particles.count) {
-            out.push_back({"lock.particle_ids." + std::to_string(k),
+            out.push_back({"lock.particle_ids[" + std::to_string(k) + "]",
                            std::to_string(lock.particle_ids[k]), "must be < particles.count",
                            "locked particle id"});
         }

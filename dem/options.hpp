@@ -2,6 +2,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/units.hpp"
@@ -69,6 +71,8 @@ struct ContactOptions {
 };
 
 enum class EnclosureShape { cylinder, box };
+inline constexpr std::pair<EnclosureShape, std::string_view> kEnclosureShapeNames[] = {
+    {EnclosureShape::cylinder, "cylinder"}, {EnclosureShape::box, "box"}};
 
 /// Rods of diameter rod_diameter_m along every edge of a cubic cell lattice (paper 002).
 struct RodGridOptions {

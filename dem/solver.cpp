@@ -65,8 +65,9 @@ SimulationError::SimulationError(Kind k, std::int64_t s, double t, int id, const
 Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
                const EnclosureState& enclosure)
     : options_(options), enclosure_(options.enclosure), enclosure_state_(enclosure) {
+    // SolverOptions::validate() checks the contact options too: each violation once.
     Violations v = options_.validate();
-    law_ = make_contact_law(options_.contact, v);
+    law_ = make_contact_law(options_.contact);
     const std::size_t n = particles.positions_m.size();
     if (n != static_cast<std::size_t>(options_.particles.count) || particles.radii_m.size() != n) {
         v.push_back(

@@ -1,15 +1,21 @@
 #!/usr/bin/env bash
-# design.md: the leaf modules (dem, structure, control, identification) never include each
-# other, nor bench/ or correlation/; bench/ never includes correlation/. Prints offenders.
+# docs/architecture.md: the leaf modules (dem, structure, control,
+# identification) never include each other, nor config/, bench/, correlation/ or apps/;
+# config/ sees only core/; bench/ never includes correlation/; only config/ sees toml++ (its
+# sources, never its public headers), apart from identification's recording.toml reader.
+# Prints the offenders.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 status=0
+sources() { grep -rnE "$1" "${@:2}" --include='*.hpp' --include='*.cpp' --include='*.h' || true; }
+
 check() {  # check FOLDER FORBIDDEN...
     local folder=$1; shift
     [[ -d "$folder" ]] || return 0
     for other in "$@"; do
-        if hits=$(grep -rnE "#include [\"<]${other}/" "$folder" --include='*.hpp' --include='*.cpp' --include='*.h'); then
+        hits=$(sources "#include [\"<]${other}/" "$folder")
+        if [[ -n "$hits" ]]; then
             echo "architecture: $folder/ must not include $other/:"; echo "$hits"; status=1
         fi
     done
@@ -17,11 +23,28 @@ check() {  # check FOLDER FORBIDDEN...
 leaves=(dem structure control identification)
 for leaf in "${leaves[@]}"; do
     others=()
-    for o in "${leaves[@]}" bench correlation apps; do [[ "$o" != "$leaf" ]] && others+=("$o"); done
+    for o in "${leaves[@]}" config bench correlation apps; do [[ "$o" != "$leaf" ]] && others+=("$o"); done
     check "$leaf" "${others[@]}"
 done
-check core dem structure control identification bench correlation apps
+check core dem structure control identification config bench correlation apps
+check config dem structure control identification bench correlation apps
 check bench correlation apps
 check correlation apps
+
+# toml++: config/'s sources and its internal config/toml_tree.hpp, and identification's
+# reader of recording.toml (a data file, not a config).
+hits=$(sources '#include [<"]toml\+\+' core dem structure control identification config bench \
+           correlation apps perf tests \
+       | grep -vE '^config/[a-z_]+\.cpp:|^config/toml_tree\.hpp:|^identification/recording_toml\.cpp:' \
+       || true)
+if [[ -n "$hits" ]]; then
+    echo "architecture: only config/ (its sources) may include toml++:"; echo "$hits"; status=1
+fi
+hits=$(sources '#include "config/toml_tree\.hpp"' core dem structure control identification config \
+           bench correlation apps perf tests | grep -vE '^config/[a-z_]+\.cpp:' || true)
+if [[ -n "$hits" ]]; then
+    echo "architecture: config/toml_tree.hpp is internal to config/:"; echo "$hits"; status=1
+fi
+
 [[ $status -eq 0 ]] && echo "architecture: ok"
 exit $status

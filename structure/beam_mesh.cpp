@@ -11,7 +11,7 @@ std::vector<double> beam_mesh_nodes(const BeamSpec& beam) {
     std::vector<double> features{0.0, length};
     for (const auto& s : beam.supports) features.push_back(s.x_m);
     for (const auto& p : beam.points) features.push_back(p.x_m);
-    for (const auto& m : beam.masses) features.push_back(m.x_m);
+    for (const auto& m : beam.resolved().masses) features.push_back(m.x_m);
     std::sort(features.begin(), features.end());
     std::vector<double> merged;
     for (const double x : features) {

@@ -31,7 +31,8 @@ std::array<bool, 6> fixed_dofs(SupportKind kind) {
 
 }  // namespace
 
-LinearModel build_beam_model(const BeamSpec& beam, const ExcitationSpec& excitation) {
+LinearModel build_beam_model(const BeamSpec& spec, const ExcitationSpec& excitation) {
+    const BeamSpec beam = spec.resolved();  // masses at named points placed there
     const std::vector<double> nodes = beam_mesh_nodes(beam);
     const int node_count = static_cast<int>(nodes.size());
     const int full = kNodeDofs * node_count;

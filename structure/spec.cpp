@@ -94,10 +94,17 @@ Violations BeamSpec::validate() const {
     for (std::size_t i = 0; i < masses.size(); ++i) {
         const auto& m = masses[i];
         const std::string key = "masses[" + std::to_string(i) + "]";
-        if (!m.name.empty() && !mass_names.insert(m.name).second) {
-            out.push_back({key + ".name", m.name, "must be unique", "lumped mass name"});
+        const std::string& label = m.name.empty() ? m.point : m.name;
+        if (!label.empty() && !mass_names.insert(label).second) {
+            out.push_back({key + ".name", label, "must be unique", "lumped mass name"});
         }
-        require_on_beam(key + ".x_m", m.x_m, "mass position along the beam [m]");
+        if (m.point.empty()) {
+            require_on_beam(key + ".x_m", m.x_m, "mass position along the beam [m]");
+        } else if (!point_names.contains(m.point)) {
+            out.push_back({key + ".point", "\"" + m.point + "\"",
+                           "must name a point of [structure.beam.points]",
+                           "named point the mass sits at"});
+        }
         require_positive(out, key + ".mass_kg", m.mass_kg, "lumped mass [kg]");
         require_non_negative_vector(out, key + ".inertia_kg_m2", m.inertia_kg_m2,
                                     "rotary inertia about the mass's centre of gravity [kg m^2]");
@@ -108,6 +115,18 @@ Violations BeamSpec::validate() const {
                                "centre of gravity offset from the beam axis [m]"});
             }
         }
+    }
+    return out;
+}
+
+BeamSpec BeamSpec::resolved() const {
+    BeamSpec out = *this;
+    for (auto& m : out.masses) {
+        if (m.point.empty()) continue;
+        for (const auto& p : points) {
+            if (p.name == m.point) m.x_m = p.x_m;
+        }
+        if (m.name.empty()) m.name = m.point;
     }
     return out;
 }
@@ -225,7 +244,7 @@ Violations StructureSpec::validate() const {
         case Kind::beam:
             append_prefixed(out, "beam", beam.validate());
             for (const auto& p : beam.points) point_names.insert(p.name);
-            for (const auto& m : beam.masses) {
+            for (const auto& m : beam.resolved().masses) {
                 if (!m.name.empty()) point_names.insert(m.name);
             }
             for (const auto& s : beam.supports) {

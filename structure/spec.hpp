@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/violation.hpp"
@@ -20,6 +22,11 @@ enum class SupportKind {
     free,     ///< nothing fixed
     elastic,  ///< three translational and three rotational springs to ground
 };
+inline constexpr std::pair<SupportKind, std::string_view> kSupportKindNames[] = {
+    {SupportKind::clamped, "clamped"},
+    {SupportKind::pinned, "pinned"},
+    {SupportKind::free, "free"},
+    {SupportKind::elastic, "elastic"}};
 
 struct Support {
     std::string name;  ///< e.g. "root", "tip"
@@ -35,12 +42,14 @@ struct NamedPoint {
     double x_m = 0.0;  ///< position along the beam [m]
 };
 
-/// A rigid lumped mass attached to the node at x_m, its centre of gravity at offset_m from the
-/// beam axis, with rotary inertia about its own centre of gravity (principal axes = beam frame).
+/// A rigid lumped mass attached to the node at a named point (or at x_m), its centre of
+/// gravity at offset_m from the beam axis, with rotary inertia about its own centre of gravity
+/// (principal axes = beam frame).
 struct LumpedMass {
-    std::string name;
-    double x_m = 0.0;                                         ///< [m]
-    double mass_kg = 0.0;                                     ///< [kg]
+    std::string name;      ///< label; empty: the name of its point
+    std::string point;     ///< the named point it sits at; empty: at x_m
+    double x_m = 0.0;      ///< position when no point is named [m]
+    double mass_kg = 0.0;  ///< [kg]
     Eigen::Vector3d inertia_kg_m2 = Eigen::Vector3d::Zero();  ///< [kg m^2] about x, y, z
     Eigen::Vector3d offset_m = Eigen::Vector3d::Zero();       ///< [m] CG offset from axis
 };
@@ -61,6 +70,11 @@ struct BeamSpec {
 
     /// Every violated constraint (keys relative to the beam section of the config).
     [[nodiscard]] Violations validate() const;
+    /// A copy with every mass given by its point placed at that point and, without a name of
+    /// its own, named after it: the positions as the model uses them, whatever the points
+    /// were changed to after reading. A point that does not exist leaves x_m (validate()
+    /// reports it).
+    [[nodiscard]] BeamSpec resolved() const;
 };
 
 /// A chain or network of point masses moving along the excitation direction (papers 003, 004).
@@ -100,6 +114,8 @@ struct MatrixSpec {
 /// Modal damping ratios per mode, or Rayleigh damping C = alpha M + beta K.
 struct DampingSpec {
     enum class Model { modal, rayleigh };
+    static constexpr std::pair<Model, std::string_view> kModelNames[] = {
+        {Model::modal, "modal"}, {Model::rayleigh, "rayleigh"}};
     Model model = Model::modal;
     double default_ratio = 0.005;      ///< modal: ratio of every mode not listed [-]
     std::vector<double> modal_ratios;  ///< modal: ratios of modes 1, 2, ... [-]
@@ -114,6 +130,8 @@ struct DampingSpec {
 /// How the structure is driven.
 struct ExcitationSpec {
     enum class Kind { force, base };
+    static constexpr std::pair<Kind, std::string_view> kKindNames[] = {{Kind::force, "force"},
+                                                                       {Kind::base, "base"}};
     Kind kind = Kind::force;
     std::string point;                                     ///< force: named point the force acts at
     std::string support;                                   ///< base: the support that moves
@@ -124,6 +142,8 @@ struct ExcitationSpec {
 
 struct StructureSpec {
     enum class Kind { beam, lumped, matrix };
+    static constexpr std::pair<Kind, std::string_view> kKindNames[] = {
+        {Kind::beam, "beam"}, {Kind::lumped, "lumped"}, {Kind::matrix, "matrix"}};
     Kind kind = Kind::beam;
     BeamSpec beam;
     LumpedSpec lumped;

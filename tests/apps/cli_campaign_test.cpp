@@ -95,6 +95,65 @@ TEST(Cli, AKilledCampaignResumesToTheSameFilesAsAnUninterruptedOne) {
     EXPECT_GE(std::count(damping.begin(), damping.end(), '\n'), 2) << damping;
 }
 
+/// A linear campaign (rigid particles, one level, three frequencies): a second or so.
+std::filesystem::path write_rigid_campaign(const std::filesystem::path& dir) {
+    std::string text = file_text(std::string(SB_SOURCE_DIR) + "/configs/paper000-h0.toml");
+    const auto set = [&text](const std::string& key, const std::string& line) {
+        const auto at = text.find("\n" + key);
+        const auto end = text.find('\n', at + 1);
+        text.replace(at + 1, end - at - 1, line);
+    };
+    set("point = \"damper\"", "point = \"damper\"\nmodel = \"rigid\"");
+    set("levels_g", "levels_g = [1.0]");
+    set("low_ratio", "low_ratio = 0.99");
+    set("high_ratio", "high_ratio = 1.01");
+    set("count = 7", "count = 3");
+    const auto file = dir / "rigid.toml";
+    std::ofstream(file) << text;
+    return file;
+}
+
+/// The config_hash line of a provenance or resolved config file.
+std::string hash_in(const std::filesystem::path& file) {
+    const std::string text = file_text(file);
+    const std::string key = "config_hash = \"";
+    const auto at = text.find(key);
+    return at == std::string::npos ? "" : text.substr(at + key.size(), 16);
+}
+
+TEST(CliSet, ARunWithASetValueWritesItAndRefusesAnotherConfigsCheckpoints) {
+    const auto dir = temp_dir("set-run-" + std::to_string(getpid()));
+    const auto config = write_rigid_campaign(dir);
+    const auto out = dir / "out";
+    const auto first = run("run " + config.string() + " --out " + out.string() + " -q");
+    ASSERT_EQ(first.exit_code, 0) << first.output;
+    const std::string first_hash = hash_in(out / "provenance.toml");
+    ASSERT_EQ(first_hash.size(), 16u);
+    EXPECT_EQ(hash_in(out / "config.resolved.toml"), first_hash);
+    const std::string points = file_text(out / "points.csv");
+
+    const std::string set = " --set dampers.pd.contact.sliding_friction=0.45";
+    const auto refused = run("run " + config.string() + " --out " + out.string() + " -q" + set);
+    EXPECT_EQ(refused.exit_code, 2) << refused.output;
+    EXPECT_NE(refused.output.find(first_hash), std::string::npos) << refused.output;
+    EXPECT_NE(refused.output.find("--restart"), std::string::npos) << refused.output;
+    EXPECT_NE(refused.output.find("nothing was simulated"), std::string::npos) << refused.output;
+    EXPECT_EQ(file_text(out / "points.csv"), points);
+    EXPECT_EQ(hash_in(out / "provenance.toml"), first_hash);
+
+    const auto again =
+        run("run " + config.string() + " --out " + out.string() + set + " --restart");
+    ASSERT_EQ(again.exit_code, 0) << again.output;
+    EXPECT_NE(again.output.find("0 taken from checkpoints"), std::string::npos) << again.output;
+    const std::string resolved = file_text(out / "config.resolved.toml");
+    EXPECT_NE(resolved.find("\nsliding_friction = 0.45\n"), std::string::npos) << resolved;
+    const std::string second_hash = hash_in(out / "provenance.toml");
+    EXPECT_EQ(second_hash.size(), 16u);
+    EXPECT_NE(second_hash, first_hash);
+    EXPECT_NE(file_text(out / "provenance.toml").find("--set 'dampers.pd.contact.sliding_friction"),
+              std::string::npos);
+}
+
 TEST(Cli, RunWithABadConfigExitsTwoBeforeSimulating) {
     const auto dir = temp_dir("run-bad-" + std::to_string(getpid()));
     const auto file = dir / "bad.toml";

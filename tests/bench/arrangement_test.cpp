@@ -10,8 +10,8 @@
 
 #include "bench/campaign.hpp"
 #include "bench/campaign_config.hpp"
-#include "bench/config_errors.hpp"
 #include "campaign_fixtures.hpp"
+#include "config/errors.hpp"
 
 namespace sb::bench {
 namespace {
@@ -148,7 +148,7 @@ TEST(Arrangement, ABlockCathetusNeedsTheFortyFiveDegreeAngle) {
     try {
         load_campaign_config_text(text, "wedge.toml");
         ADD_FAILURE() << "accepted";
-    } catch (const ConfigException& e) {
+    } catch (const config::ConfigException& e) {
         EXPECT_NE(e.errors().front().format().find("block_cathetus_m"), std::string::npos)
             << e.errors().front().format();
     }
@@ -160,7 +160,7 @@ TEST(Arrangement, AnEnclosureMassThatIsNotAtTheDamperPointIsAConfigError) {
     try {
         load_campaign_config_text(text, "enclosure.toml");
         ADD_FAILURE() << "accepted";
-    } catch (const ConfigException& e) {
+    } catch (const config::ConfigException& e) {
         EXPECT_NE(e.errors().front().format().find("dampers.pd.enclosure_mass"), std::string::npos)
             << e.errors().front().format();
     }
@@ -184,12 +184,12 @@ TEST(ShippedConfigs, Paper000CampaignHasSixArrangementsNineLevelsAndTheCalibrate
     }
     EXPECT_EQ(c.levels_g, (std::vector<double>{0.5, 0.75, 1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0}));
     ASSERT_EQ(c.dampers.size(), 1u);
-    const auto& contact = c.dampers[0].solver.contact;
+    const auto& contact = c.dampers[0].contact;
     EXPECT_EQ(contact.particle_particle.sliding_friction, 0.6);
     EXPECT_EQ(contact.particle_particle.rolling_friction, 0.01);
-    EXPECT_EQ(contact.particle_wall.sliding_friction, 0.6);
-    EXPECT_EQ(contact.particle_wall.rolling_friction, 0.01);
-    EXPECT_EQ(c.dampers[0].solver.particles.count, 120);
+    EXPECT_EQ(contact.particle_wall().sliding_friction, 0.6);
+    EXPECT_EQ(contact.particle_wall().rolling_friction, 0.01);
+    EXPECT_EQ(c.dampers[0].particles.count, 120);
     EXPECT_EQ(c.dampers[0].enclosure_mass, "enclosure");
 }
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <utility>
 
-#include "bench/config_errors.hpp"
+#include "config/errors.hpp"
 #include "tests/support/small_beam_config.hpp"
 
 namespace sb::bench {
@@ -15,12 +15,12 @@ namespace {
 
 const std::string& kValidBeam = sb::test::kSmallBeamConfig;
 
-/// Runs `load`, expecting a ConfigException; returns its formatted errors.
+/// Runs `load`, expecting a config::ConfigException; returns its formatted errors.
 template <class Load>
 std::vector<std::string> errors_from(Load load) {
     try {
         load();
-    } catch (const ConfigException& e) {
+    } catch (const config::ConfigException& e) {
         std::vector<std::string> out;
         for (const auto& error : e.errors()) {
             out.push_back(error.format());
@@ -52,8 +52,10 @@ TEST(CampaignConfig, AValidBeamConfigLoadsInSi) {
     EXPECT_EQ(config.name, "t");
     EXPECT_DOUBLE_EQ(config.structure.beam.length_m, 0.5);
     ASSERT_EQ(config.structure.beam.masses.size(), 1u);
-    EXPECT_DOUBLE_EQ(config.structure.beam.masses[0].x_m, 0.5);
-    EXPECT_EQ(config.structure.beam.masses[0].name, "tip");
+    // A mass given by its point sits there, and takes its name, whenever the model is built.
+    EXPECT_EQ(config.structure.beam.masses[0].point, "tip");
+    EXPECT_DOUBLE_EQ(config.structure.beam.resolved().masses[0].x_m, 0.5);
+    EXPECT_EQ(config.structure.beam.resolved().masses[0].name, "tip");
     EXPECT_FALSE(config.structure.beam.shear_modulus_pa.has_value());
 }
 
@@ -211,9 +213,10 @@ TEST(CampaignConfig, AMatrixDofBeyondTheMatrixIsReportedAtItsLine) {
     std::ofstream(file) << matrix_config("\"base.z\" = 0\n\"tip.z\" = 2\n");
     const auto errors = errors_of_file(file);
     ASSERT_EQ(errors.size(), 1u);
+    // The DOF's name holds a dot: its path quotes it, as --set takes it.
     EXPECT_EQ(errors[0], file.string() +
-                             ":10:11: structure.matrix.dofs.tip.z = 2: must be < 2, the rows of "
-                             "mass_file (zero-based row of a named DOF)");
+                             ":10:11: structure.matrix.dofs.\"tip.z\" = 2: must be < 2, the rows "
+                             "of mass_file (zero-based row of a named DOF)");
 }
 
 TEST(CampaignConfig, MatricesOfDifferentSizesAreReportedAtTheStiffnessFile) {
@@ -224,10 +227,12 @@ TEST(CampaignConfig, MatricesOfDifferentSizesAreReportedAtTheStiffnessFile) {
     std::ofstream(file) << matrix_config("\"tip.z\" = 1\n");
     const auto errors = errors_of_file(file);
     ASSERT_EQ(errors.size(), 1u);
+    // The file is named as the bench resolved it: absolute, next to the config.
     EXPECT_EQ(errors[0],
-              file.string() +
-                  ":6:18: structure.matrix.stiffness_file = \"k.mtx\": must hold 2 x 2 like "
-                  "mass_file, holds 3 x 3 (Matrix Market stiffness matrix)");
+              file.string() + ":6:18: structure.matrix.stiffness_file = \"" +
+                  (dir / "k.mtx").string() +
+                  "\": must hold 2 x 2 like mass_file, holds 3 x 3 (Matrix Market stiffness "
+                  "matrix)");
 }
 
 }  // namespace

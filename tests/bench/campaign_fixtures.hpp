@@ -11,14 +11,14 @@
 #include <utility>
 #include <vector>
 
-#include "bench/sweep_checkpoint.hpp"
+#include "core/text_file.hpp"
 #include "structure/spec.hpp"
 
 namespace sb::bench::test {
 
 /// The shipped H-0 campaign with its lines starting with `key` replaced.
 inline std::string paper000_h0_with(const std::vector<std::pair<std::string, std::string>>& edits) {
-    std::string text = read_file(std::string(SB_SOURCE_DIR) + "/configs/paper000-h0.toml");
+    std::string text = read_text_file(std::string(SB_SOURCE_DIR) + "/configs/paper000-h0.toml");
     for (const auto& [key, line] : edits) {
         const auto at = text.find("\n" + key);
         EXPECT_NE(at, std::string::npos) << key;
@@ -82,7 +82,7 @@ inline std::vector<std::pair<std::string, std::string>> files_under(
     for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
         if (entry.is_regular_file()) {
             out.emplace_back(std::filesystem::relative(entry.path(), dir).string(),
-                             read_file(entry.path()));
+                             read_text_file(entry.path()));
         }
     }
     std::sort(out.begin(), out.end());

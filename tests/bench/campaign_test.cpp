@@ -13,9 +13,10 @@
 #include <string>
 
 #include "bench/arrangement.hpp"
-#include "bench/config_errors.hpp"
-#include "bench/sweep_checkpoint.hpp"
+#include "bench/resolved_config.hpp"
 #include "campaign_fixtures.hpp"
+#include "config/errors.hpp"
+#include "core/text_file.hpp"
 #include "dem/setup.hpp"
 #include "identification/recording_io.hpp"
 #include "structure/frf.hpp"
@@ -120,11 +121,12 @@ TEST(Campaign, WithLockedParticlesTheCouplingLoopGivesTheLinearModelsFrfAndDampi
     const auto& arrangement = config.campaign.arrangements[0];
     const auto& damper = config.campaign.dampers[0];
     auto spec = arrangement_structure(config, arrangement, false);
-    const auto bed = dem::load_particles((options.out_dir / "settled" / "H-0_1g_pd.csv").string());
+    // The bed file carries the config's hash: no other config starts from it.
+    const auto bed = dem::load_particles(
+        (options.out_dir / "settled" / ("H-0_1g_pd_" + config_hash(config) + ".csv")).string());
     const DamperMounting mounting = damper_mounting(arrangement, damper);
     test::add_rigid_bed(spec, damper.point, "bed", mounting.origin_m, mounting.rotation,
-                        bed.positions_m, bed.radii_m,
-                        damper.solver.particles.material.density_kg_m3);
+                        bed.positions_m, bed.radii_m, damper.particles.material.density_kg_m3);
     const auto model = structure::build_linear_model(spec, config.base_dir);
     const auto basis = structure::compute_modes(model, spec.damping, spec.modes);
     const Eigen::Vector3d z = Eigen::Vector3d::UnitZ();
@@ -178,7 +180,7 @@ TEST(Campaign, GivesTheSameFilesWhateverTheThreadCount) {
         options.threads = threads;
         const auto summary = run_campaign(config, options);
         EXPECT_EQ(summary.points, 6);
-        EXPECT_NE(read_file(options.out_dir / "provenance.toml")
+        EXPECT_NE(read_text_file(options.out_dir / "provenance.toml")
                       .find("threads = " + std::to_string(threads)),
                   std::string::npos);
         runs.push_back(outputs(options.out_dir));
@@ -250,7 +252,64 @@ TEST(Campaign, ARunWithoutLevelsIsAConfigError) {
     const auto config = load_campaign_config_text(text, "nolevels.toml");
     CampaignRunOptions options;
     options.out_dir = fresh_dir("nolevels");
-    EXPECT_THROW(run_campaign(config, options), ConfigException);
+    EXPECT_THROW(run_campaign(config, options), config::ConfigException);
+}
+
+/// A small linear campaign (rigid particles, one level, three frequencies).
+std::string small_rigid_campaign() {
+    return paper000_h0_with({
+        {"point = \"damper\"", "point = \"damper\"\nmodel = \"rigid\""},
+        {"levels_g", "levels_g = [1.0]"},
+        {"low_ratio", "low_ratio = 0.99"},
+        {"high_ratio", "high_ratio = 1.01"},
+        {"count", "count = 3"},
+    });
+}
+
+TEST(Campaign, CheckpointsOfAnotherConfigAreRefusedAndRestartRecomputes) {
+    const std::string text = small_rigid_campaign();
+    const auto first = load_campaign_config_text(text, "first.toml");
+    CampaignRunOptions options;
+    options.out_dir = fresh_dir("foreign");
+    options.threads = 1;
+    const auto whole = run_campaign(first, options);
+    ASSERT_EQ(whole.points, 3);
+    const std::string first_points = read_text_file(options.out_dir / "points.csv");
+
+    // The same file with another friction: another hash, so its checkpoints are not taken.
+    auto second = first;
+    set_value_text(second, "dampers.pd.contact.sliding_friction", "0.3", "--set");
+    ASSERT_NE(config_hash(second), config_hash(first));
+    try {
+        run_campaign(second, options);
+        FAIL() << "the foreign checkpoints were taken";
+    } catch (const config::ConfigException& e) {
+        ASSERT_EQ(e.errors().size(), 1u);
+        const std::string message = e.errors().front().format();
+        EXPECT_NE(message.find(config_hash(first)), std::string::npos) << message;
+        EXPECT_NE(message.find(config_hash(second)), std::string::npos) << message;
+        EXPECT_NE(message.find("--restart"), std::string::npos) << message;
+    }
+    // Nothing was simulated or written: the first run's files are untouched.
+    EXPECT_EQ(read_text_file(options.out_dir / "points.csv"), first_points);
+    EXPECT_NE(read_text_file(options.out_dir / "provenance.toml")
+                  .find("config_hash = \"" + config_hash(first) + "\""),
+              std::string::npos);
+
+    options.restart = true;
+    const auto again = run_campaign(second, options);
+    EXPECT_EQ(again.resumed_points, 0);
+    EXPECT_EQ(again.points, 3);
+    EXPECT_NE(read_text_file(options.out_dir / "provenance.toml")
+                  .find("config_hash = \"" + config_hash(second) + "\""),
+              std::string::npos);
+    EXPECT_NE(
+        read_text_file(options.out_dir / "config.resolved.toml").find("\nsliding_friction = 0.3\n"),
+        std::string::npos);
+
+    // The same config again resumes every point.
+    options.restart = false;
+    EXPECT_EQ(run_campaign(second, options).resumed_points, 3);
 }
 
 }  // namespace

@@ -62,7 +62,7 @@ TEST(FrequencyGrid, DownwardReversesTheOrder) {
     FrequencyGridSpec spec;
     spec.count = 7;
     const auto up = frequency_grid(spec, kFirstModeHz);
-    spec.descending = true;
+    spec.direction = FrequencyGridSpec::Direction::down;
     auto down = frequency_grid(spec, kFirstModeHz);
     std::reverse(down.begin(), down.end());
     EXPECT_EQ(up, down);
@@ -72,7 +72,7 @@ TEST(FrequencyGrid, AGivenGridIsSortedInTheSweepDirection) {
     FrequencyGridSpec spec;
     spec.values_hz = {6.5, 6.0, 7.0};
     EXPECT_EQ(frequency_grid(spec, kFirstModeHz), (std::vector<double>{6.0, 6.5, 7.0}));
-    spec.descending = true;
+    spec.direction = FrequencyGridSpec::Direction::down;
     EXPECT_EQ(frequency_grid(spec, kFirstModeHz), (std::vector<double>{7.0, 6.5, 6.0}));
 }
 

@@ -30,10 +30,35 @@ TEST(SolverOptions, ValidateCollectsEveryViolationWithRelativeKeys) {
     EXPECT_NE(std::find(keys.begin(), keys.end(), "max_overlap_fraction"), keys.end());
 }
 
-TEST(Solver, ConstructorRejectsInvalidOptions) {
+TEST(Solver, ConstructorRejectsInvalidOptionsNamingEachViolationOnce) {
     SolverOptions o = free_box_options(1, NormalLaw::hooke);
     o.contact.normal_stiffness = 0.0;
-    EXPECT_THROW(Solver(o, particles_at({{0, 0, 0.05}}, 1.5e-3)), std::invalid_argument);
+    o.contact.particle_wall.sliding_friction = -1.0;
+    try {
+        Solver solver(o, particles_at({{0, 0, 0.05}}, 1.5e-3));
+        FAIL() << "invalid options were accepted";
+    } catch (const std::invalid_argument& e) {
+        const std::string message = e.what();
+        for (const std::string key :
+             {"contact.normal_stiffness", "contact.particle_wall.sliding_friction"}) {
+            const auto first = message.find(key + " =");
+            ASSERT_NE(first, std::string::npos) << message;
+            EXPECT_EQ(message.find(key + " =", first + 1), std::string::npos)
+                << key << " is reported twice:\n"
+                << message;
+        }
+    }
+}
+
+TEST(SolverOptions, ElementsOfListsAreKeyedByIndexInBrackets) {
+    SolverOptions o;
+    o.particles.size_distribution = {{3e-3, 0.5}, {-1.0, 0.5}};
+    o.enclosure.plates = {{{0, 0, 0}, {-1, 1, 1}}};
+    std::vector<std::string> keys;
+    for (const auto& x : o.validate()) keys.push_back(x.key);
+    EXPECT_NE(std::find(keys.begin(), keys.end(), "particles.size_distribution[1].diameter_m"),
+              keys.end());
+    EXPECT_NE(std::find(keys.begin(), keys.end(), "enclosure.plates[0]"), keys.end());
 }
 
 TEST(Solver, ParticleLeavingTheEnclosureThrowsWithItsId) {

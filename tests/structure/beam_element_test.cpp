@@ -91,7 +91,7 @@ TEST(BeamMesh, HasANodeAtEveryFeatureAndAtLeastTheMinimumElements) {
     b.min_elements = 10;
     b.supports = {{"root", 0.0, SupportKind::clamped, {}, {}}};
     b.points = {{"p", 0.16}, {"q", 0.16 + 1e-12}};
-    b.masses = {{"m", 0.533, 0.01, {}, {}}};
+    b.masses = {{"m", "", 0.533, 0.01, {}, {}}};
     const auto nodes = beam_mesh_nodes(b);
     EXPECT_GE(nodes.size(), 11u);
     EXPECT_DOUBLE_EQ(nodes.front(), 0.0);

@@ -1,0 +1,84 @@
+// The campaign specs: constraints across keys and the DEM options they give.
+#include "bench/campaign_spec.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sb::bench {
+
+Violations ArrangementSpec::validate() const {
+    Violations out;
+    if (block_cathetus_m > 0.0 && std::abs(damper_angle_deg - 45.0) > 1e-9) {
+        out.push_back({"block_cathetus_m", format_value(block_cathetus_m),
+                       "a right isosceles wedge tilts the damper by 45 deg: damper_angle_deg "
+                       "must be 45, not " +
+                           format_value(damper_angle_deg),
+                       "cathetus of the 45-degree mounting wedge [m]"});
+    }
+    return out;
+}
+
+Violations FrequencyGridSpec::validate() const {
+    Violations out;
+    if (values_hz.empty() && !(high_ratio > low_ratio)) {
+        out.push_back({"high_ratio", format_value(high_ratio),
+                       "must be > low_ratio = " + format_value(low_ratio),
+                       "highest frequency / first mode [-]"});
+    }
+    return out;
+}
+
+dem::PairProperties ContactSpec::particle_wall() const {
+    dem::PairProperties wall;
+    wall.restitution = wall_restitution.value_or(particle_particle.restitution);
+    wall.sliding_friction = wall_sliding_friction.value_or(particle_particle.sliding_friction);
+    wall.rolling_friction = wall_rolling_friction.value_or(particle_particle.rolling_friction);
+    return wall;
+}
+
+dem::ContactOptions ContactSpec::contact_options(double stiffness) const {
+    dem::ContactOptions c;
+    c.normal = normal;
+    c.damping = damping;
+    c.tangential = tangential;
+    c.rolling = rolling;
+    c.normal_stiffness = stiffness;
+    c.tangential_stiffness_ratio = tangential_stiffness_ratio;
+    c.slip_regularisation_m_s = slip_regularisation_m_s;
+    c.particle_particle = particle_particle;
+    c.particle_wall = particle_wall();
+    c.wall_material = wall_material;
+    return c;
+}
+
+dem::SolverOptions DamperSpec::solver_options(double normal_stiffness) const {
+    dem::SolverOptions s;
+    s.particles = particles;
+    s.contact = contact.contact_options(normal_stiffness);
+    s.enclosure = enclosure;
+    s.max_overlap_fraction = guard_overlap_fraction;
+    s.threads = threads;
+    return s;
+}
+
+Violations DamperSpec::validate() const {
+    // An automatic stiffness is chosen per sweep; any positive value stands in for it here.
+    const dem::SolverOptions solver = solver_options(contact.normal_stiffness.value_or(1.0));
+    Violations out;
+    append_prefixed(out, "solver", solver.validate());
+    append_prefixed(out, "settle", settle.validate());
+    return out;
+}
+
+std::vector<ArrangementSpec> CampaignSpec::selected_arrangements() const {
+    if (arrangement_selection.empty()) return arrangements;
+    std::vector<ArrangementSpec> out;
+    for (const auto& name : arrangement_selection) {
+        const auto it = std::find_if(arrangements.begin(), arrangements.end(),
+                                     [&](const ArrangementSpec& a) { return a.name == name; });
+        if (it != arrangements.end()) out.push_back(*it);
+    }
+    return out;
+}
+
+}  // namespace sb::bench

@@ -1,0 +1,371 @@
+// The keys of [campaign], [arrangements.NAME], [controller] and [output], and the checks that
+// tie the tables together (points and arrangements that must exist).
+#include "bench/config_schema.hpp"
+
+#include <algorithm>
+
+#include "bench/campaign_config.hpp"
+#include "bench/schema_parts.hpp"
+#include "config/builder.hpp"
+
+namespace sb::bench {
+namespace {
+
+using config::Bound;
+using config::TableBuilder;
+
+std::shared_ptr<const config::Table> frequencies_table() {
+    TableBuilder<FrequencyGridSpec> t(
+        "the frequency grid",
+        "The grid of every sweep: given, or built around the first mode (of the structure with "
+        "the particles as rigid mass) equally spaced in the phase angle atan(2 zeta r/(1 - r^2)) "
+        "of a single mode with `grid_damping_ratio`, so that the points crowd near resonance "
+        "where half-power and circle fits need them.");
+    t.numbers(
+         "values_hz", [](FrequencyGridSpec & g) -> auto& { return g.values_hz; },
+         "explicit frequency grid")
+        .unit("Hz")
+        .bound(Bound::positive())
+        .doc("explicit frequency grid; when given the keys below but `direction` are not used");
+    const auto built = [](const FrequencyGridSpec& g) { return g.values_hz.empty(); };
+    t.number(
+         "low_ratio", [](FrequencyGridSpec & g) -> auto& { return g.low_ratio; },
+         "lowest frequency / first mode")
+        .unit("-")
+        .bound(Bound::positive())
+        .when(built, "not used with values_hz", true);
+    t.number(
+         "high_ratio", [](FrequencyGridSpec & g) -> auto& { return g.high_ratio; },
+         "highest frequency / first mode (above low_ratio)")
+        .unit("-")
+        .bound(Bound::positive())
+        .when(built, "not used with values_hz", true);
+    t.integer(
+         "count", [](FrequencyGridSpec & g) -> auto& { return g.count; },
+         "points of the built grid")
+        .bound(Bound::at_least(2))
+        .when(built, "not used with values_hz", true);
+    t.number(
+         "grid_damping_ratio", [](FrequencyGridSpec & g) -> auto& { return g.grid_damping_ratio; },
+         "damping that places the built grid")
+        .unit("-")
+        .bound(Bound::closed(1e-4, 0.5))
+        .when(built, "not used with values_hz", true);
+    t.choice(
+        "direction", [](FrequencyGridSpec & g) -> auto& { return g.direction; },
+        FrequencyGridSpec::kDirectionNames, "sweep direction");
+    t.check([](const FrequencyGridSpec& g) { return g.validate(); });
+    return t.build();
+}
+
+std::shared_ptr<const config::Table> campaign_table() {
+    TableBuilder<CampaignConfig> t("the campaign");
+    t.string(
+        "name", [](CampaignConfig & c) -> auto& { return c.name; },
+        "campaign name, used in output file names");
+    t.string(
+        "description", [](CampaignConfig & c) -> auto& { return c.description; }, "free text");
+    t.numbers(
+         "levels_g", [](CampaignConfig & c) -> auto& { return c.campaign.levels_g; },
+         "target RMS levels at the control point")
+        .unit("g")
+        .bound(Bound::positive())
+        .doc(
+            "target RMS accelerations at the control point (9.80665 m/s^2 per g); `run` needs "
+            "at least one");
+    t.strings(
+         "arrangements",
+         [](CampaignConfig & c) -> auto& { return c.campaign.arrangement_selection; },
+         "arrangements to run")
+        .doc("which `[arrangements.NAME]` to run, in this order; empty: every one defined");
+    t.string(
+         "control_point", [](CampaignConfig & c) -> auto& { return c.campaign.control_point; },
+         "named point whose RMS acceleration is controlled")
+        .doc(
+            "named point whose RMS acceleration along the excitation direction is controlled "
+            "(channel `acc_<point>`)");
+    t.strings(
+        "response_points", [](CampaignConfig & c) -> auto& { return c.campaign.response_points; },
+        "named points recorded besides the control point (channels `acc_<point>`)");
+    t.choice(
+         "point_start", [](CampaignConfig & c) -> auto& { return c.campaign.point_start; },
+         CampaignSpec::kPointStartNames, "how the structure starts each point after the first")
+        .doc(
+            "how the structure starts each point after the first of a sweep (the first starts "
+            "from the linear steady state of the structure with the particles as rigid mass, "
+            "the particles from their settled bed; later points always keep the particles' "
+            "state): where the previous point left it; the linear steady state scaled in "
+            "amplitude and phase to the response of the previous point's equivalent driven "
+            "mode; or the plain linear steady state at the new frequency and start amplitude, "
+            "exact for a linear specimen but far from a particle-damped beam's response near "
+            "resonance. See docs/campaign.md for what each costs");
+    t.boolean(
+         "scale_response_on_update",
+         [](CampaignConfig & c) -> auto& { return c.campaign.scale_response_on_update; },
+         "scale the structure's response with every amplitude update")
+        .doc(
+            "at every amplitude update within a point, scale the structure's response by "
+            "new/old amplitude about its mean over the last period (the particles ride with "
+            "their enclosures): the update lands on the new steady state of a linear structure "
+            "instead of starting a slow transient; see docs/campaign.md");
+    t.integer(
+         "seed", [](CampaignConfig & c) -> auto& { return c.campaign.seed; },
+         "seed of the particle filling")
+        .bound(Bound::non_negative());
+    t.table(
+        "frequencies", [](CampaignConfig & c) -> auto& { return c.campaign.frequencies; },
+        frequencies_table());
+    return t.build();
+}
+
+std::shared_ptr<const config::Table> arrangement_table() {
+    TableBuilder<ArrangementSpec> t(
+        "a mounting of the specimen",
+        "How the specimen is mounted for a series of sweeps (paper 000, Figs. 1-2). The shaker "
+        "drives z. Horizontal: the section's long side (y) is vertical, gravity along -y. "
+        "Vertical: gravity along -z. The damper axis is tilted from z towards +y about the beam "
+        "axis x by the angle.");
+    t.choice(
+        "oscillation", [](ArrangementSpec & a) -> auto& { return a.oscillation; },
+        ArrangementSpec::kOscillationNames, "direction of the beam's motion");
+    t.number(
+         "damper_angle_deg", [](ArrangementSpec & a) -> auto& { return a.damper_angle_deg; },
+         "angle between the damper axis and the motion")
+        .unit("deg")
+        .bound(Bound::closed(0.0, 90.0));
+    t.number(
+         "block_mass_kg", [](ArrangementSpec & a) -> auto& { return a.block_mass_kg; },
+         "mounting block added at each damper point")
+        .unit("kg")
+        .bound(Bound::non_negative())
+        .doc(
+            "mounting block added at each damper point (paper 000: 31 g at 45 deg), a point "
+            "mass at the block's centre of gravity");
+    t.number(
+         "block_cathetus_m", [](ArrangementSpec & a) -> auto& { return a.block_cathetus_m; },
+         "cathetus of the 45-degree mounting wedge")
+        .unit("m")
+        .bound(Bound::non_negative())
+        .doc(
+            "the block is a right isosceles wedge with this cathetus, lying on one cathetus "
+            "across y with the enclosure standing on its hypotenuse; it raises the enclosure's "
+            "mounting face by half the cathetus (paper 000 Table 1: 20 mm). Needs "
+            "`damper_angle_deg = 45`");
+    t.vector3(
+         "mount_lift_m", [](ArrangementSpec & a) -> auto& { return a.mount_lift_m; },
+         "further displacement of the enclosure's mounting face (a spacer, a side mount), "
+         "structure frame")
+        .unit("m");
+    t.check([](const ArrangementSpec& a) { return a.validate(); });
+    return t.build();
+}
+
+std::shared_ptr<const config::Table> controller_table() {
+    using control::ControllerOptions;
+    TableBuilder<ControllerOptions> t("the RMS amplitude controller",
+                                      "The RMS amplitude controller of paper 000 section 3.2 "
+                                      "(see docs/control.md).");
+    t.number(
+         "tolerance", [](ControllerOptions & c) -> auto& { return c.tolerance; },
+         "relative RMS tolerance")
+        .unit("-")
+        .bound(Bound::closed(1e-6, 0.5));
+    t.integer(
+         "window_periods", [](ControllerOptions & c) -> auto& { return c.window_periods; },
+         "periods that must stay within the tolerance")
+        .bound(Bound::at_least(3));
+    t.integer(
+         "early_periods", [](ControllerOptions & c) -> auto& { return c.early_periods; },
+         "values needed for an early too-low/too-high decision (at most window_periods)")
+        .bound(Bound::at_least(3));
+    t.integer(
+         "transient_periods", [](ControllerOptions & c) -> auto& { return c.transient_periods; },
+         "periods skipped after every change")
+        .bound(Bound::non_negative());
+    t.integer(
+         "max_periods", [](ControllerOptions & c) -> auto& { return c.max_periods; },
+         "budget per point before falling back to the closest amplitude")
+        .bound(Bound::at_least(1));
+    t.integer(
+         "closest_rerun_periods",
+         [](ControllerOptions & c) -> auto& { return c.closest_rerun_periods; },
+         "periods re-run at the closest amplitude")
+        .bound(Bound::at_least(1));
+    t.number(
+         "initial_amplitude", [](ControllerOptions & c) -> auto& { return c.initial_amplitude; },
+         "first amplitude of every sweep")
+        .unit("N, or m/s^2 for base excitation")
+        .bound(Bound::positive())
+        .automatic("from the linear model with the particles as rigid mass");
+    t.number(
+         "min_amplitude", [](ControllerOptions & c) -> auto& { return c.min_amplitude; },
+         "lower amplitude bound")
+        .unit("N, or m/s^2")
+        .bound(Bound::non_negative());
+    t.number(
+         "max_amplitude", [](ControllerOptions & c) -> auto& { return c.max_amplitude; },
+         "upper amplitude bound (above min_amplitude)")
+        .unit("N, or m/s^2")
+        .bound(Bound::positive().allow_infinite());
+    t.number(
+         "max_step_factor", [](ControllerOptions & c) -> auto& { return c.max_step_factor; },
+         "largest factor of one update")
+        .unit("-")
+        .bound(Bound::greater_than(1.0));
+    t.number(
+         "overshoot", [](ControllerOptions & c) -> auto& { return c.overshoot; },
+         "bracket widening (loosened gradient); overshoot * tolerance < 0.5")
+        .unit("-")
+        .bound(Bound::non_negative());
+    t.number(
+         "limit_cycle_jump", [](ControllerOptions & c) -> auto& { return c.limit_cycle_jump; },
+         "two-period limit cycle: jump / tolerance")
+        .unit("-")
+        .bound(Bound::at_least(1.0));
+    t.integer(
+         "limit_cycle_periods",
+         [](ControllerOptions & c) -> auto& { return c.limit_cycle_periods; },
+         "alternating periods of a limit cycle (even)")
+        .bound(Bound::at_least(4));
+    t.integer(
+         "max_restarts", [](ControllerOptions & c) -> auto& { return c.max_restarts; },
+         "secant restarts before only the ratio rule is used")
+        .bound(Bound::non_negative());
+    t.integer(
+         "drift_horizon_periods",
+         [](ControllerOptions & c) -> auto& { return c.drift_horizon_periods; },
+         "periods a drift in the window is extrapolated over")
+        .bound(Bound::non_negative())
+        .doc(
+            "a window within the tolerance is settled only if its monotone drift, extrapolated "
+            "as a geometric decay (linearly when it does not decay) over at most this many "
+            "periods, stays within half the tolerance; 32 is the e-folding time of a "
+            "0.5 %-damped mode; 0 turns the test off");
+    t.check([](const ControllerOptions& c) { return c.validate(); });
+    return t.build();
+}
+
+std::shared_ptr<const config::Table> output_table() {
+    TableBuilder<OutputSpec> t("what the campaign writes");
+    t.boolean(
+        "series", [](OutputSpec & o) -> auto& { return o.series; },
+        "time histories of every steady window in series/");
+    t.integer(
+         "series_samples_per_period",
+         [](OutputSpec & o) -> auto& { return o.series_samples_per_period; },
+         "samples per period in those")
+        .bound(Bound::at_least(8));
+    t.boolean(
+        "uff", [](OutputSpec & o) -> auto& { return o.uff; },
+        "transfer functions as UFF58 (frf.uff)");
+    t.boolean(
+        "plots", [](OutputSpec & o) -> auto& { return o.plots; },
+        "SVG plots through gnuplot, when it is installed");
+    return t.build();
+}
+
+/// Names a structure of this spec offers as points (beam: points, masses and supports;
+/// lumped: masses; matrix: the prefixes of named DOFs).
+std::vector<std::string> point_names(const structure::StructureSpec& spec) {
+    std::vector<std::string> names;
+    switch (spec.kind) {
+        case structure::StructureSpec::Kind::beam:
+            for (const auto& p : spec.beam.points) names.push_back(p.name);
+            for (const auto& m : spec.beam.resolved().masses) names.push_back(m.name);
+            for (const auto& s : spec.beam.supports) names.push_back(s.name);
+            break;
+        case structure::StructureSpec::Kind::lumped:
+            for (const auto& m : spec.lumped.masses) names.push_back(m.name);
+            break;
+        case structure::StructureSpec::Kind::matrix:
+            for (const auto& [dof, row] : spec.matrix.named_dofs) {
+                names.push_back(dof.substr(0, dof.rfind('.')));
+            }
+            break;
+    }
+    return names;
+}
+
+/// Every point, mass and arrangement the campaign names must exist.
+Violations check_references(const CampaignConfig& config) {
+    Violations out;
+    const auto names = point_names(config.structure);
+    const auto known = [&](const std::string& name) {
+        return std::find(names.begin(), names.end(), name) != names.end();
+    };
+    const auto text = [](const std::string& s) { return config::quoted(s); };
+    if (!config.campaign.levels_g.empty() && !known(config.campaign.control_point)) {
+        out.push_back({"campaign.control_point", text(config.campaign.control_point),
+                       "must name a point of the structure", ""});
+    }
+    for (const auto& p : config.campaign.response_points) {
+        if (!known(p)) {
+            out.push_back(
+                {"campaign.response_points", text(p), "must name a point of the structure", ""});
+        }
+    }
+    for (const auto& name : config.campaign.arrangement_selection) {
+        const auto& defined = config.campaign.arrangements;
+        if (std::none_of(defined.begin(), defined.end(),
+                         [&](const ArrangementSpec& a) { return a.name == name; })) {
+            out.push_back({"campaign.arrangements", text(name),
+                           "must name a table [arrangements." + name + "]", ""});
+        }
+    }
+    const auto beam = config.structure.beam.resolved();
+    for (const auto& d : config.campaign.dampers) {
+        const std::string key = config::join_path("dampers", d.name);
+        if (!known(d.point)) {
+            out.push_back(
+                {key + ".point", text(d.point), "must name a point of the structure", ""});
+        }
+        if (d.enclosure_mass.empty()) continue;
+        double point_x = -1.0;
+        for (const auto& p : beam.points) {
+            if (p.name == d.point) point_x = p.x_m;
+        }
+        const bool at_point =
+            config.structure.kind == structure::StructureSpec::Kind::beam &&
+            std::any_of(beam.masses.begin(), beam.masses.end(), [&](const auto& m) {
+                return m.name == d.enclosure_mass && m.x_m == point_x;
+            });
+        if (!at_point) {
+            out.push_back(
+                {key + ".enclosure_mass", text(d.enclosure_mass),
+                 "must name a [[structure.beam.masses]] entry at point \"" + d.point + "\"", ""});
+        }
+    }
+    return out;
+}
+
+std::shared_ptr<const config::Table> build_campaign_schema() {
+    TableBuilder<CampaignConfig> root("a campaign config");
+    root.table(
+        "campaign", [](CampaignConfig & c) -> auto& { return c; }, campaign_table());
+    root.named_tables(
+        "arrangements", [](CampaignConfig & c) -> auto& { return c.campaign.arrangements; },
+        [](ArrangementSpec & a) -> auto& { return a.name; }, arrangement_table());
+    root.named_tables(
+        "dampers", [](CampaignConfig & c) -> auto& { return c.campaign.dampers; },
+        [](DamperSpec & d) -> auto& { return d.name; }, schema::damper_table());
+    root.table(
+        "controller", [](CampaignConfig & c) -> auto& { return c.campaign.controller; },
+        controller_table());
+    root.table(
+        "output", [](CampaignConfig & c) -> auto& { return c.campaign.output; }, output_table());
+    root.table(
+            "structure", [](CampaignConfig & c) -> auto& { return c.structure; },
+            schema::structure_table())
+        .required();
+    root.check([](const CampaignConfig& c) { return check_references(c); });
+    return root.build();
+}
+
+}  // namespace
+
+const config::Table& campaign_schema() {
+    static const std::shared_ptr<const config::Table> schema = build_campaign_schema();
+    return *schema;
+}
+
+}  // namespace sb::bench

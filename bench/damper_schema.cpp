@@ -1,0 +1,362 @@
+// The keys of [dampers.NAME]: mounting, enclosure, particles, contact law, settling.
+#include "bench/campaign_spec.hpp"
+#include "bench/schema_parts.hpp"
+#include "config/builder.hpp"
+#include "dem/contact_law.hpp"
+
+namespace sb::bench::schema {
+namespace {
+
+using config::Bound;
+using config::TableBuilder;
+
+std::shared_ptr<const config::Table> enclosure_table() {
+    TableBuilder<dem::RodGridOptions> rods(
+        "obstacle grid of thin rods (paper 002)",
+        "Rods of `rod_diameter_m` along every edge of a cubic lattice of cells `cell_size_m` "
+        "apart, through the whole cavity.");
+    rods.boolean(
+        "enabled", [](dem::RodGridOptions & r) -> auto& { return r.enabled; },
+        "obstacle grid on (the other keys need it)");
+    const auto on = [](const dem::RodGridOptions& r) { return r.enabled; };
+    rods.number(
+            "rod_diameter_m", [](dem::RodGridOptions & r) -> auto& { return r.rod_diameter_m; },
+            "rod diameter")
+        .unit("m")
+        .bound(Bound::positive())
+        .when(on, "only with enabled = true", true);
+    rods.number(
+            "cell_size_m", [](dem::RodGridOptions & r) -> auto& { return r.cell_size_m; },
+            "edge of the cubic cells")
+        .unit("m")
+        .bound(Bound::positive())
+        .when(on, "only with enabled = true", true);
+    rods.vector3(
+            "origin_m", [](dem::RodGridOptions & r) -> auto& { return r.origin_m; },
+            "one lattice node, enclosure frame")
+        .unit("m")
+        .when(on, "only with enabled = true", true);
+
+    TableBuilder<dem::PlateOptions> plate("partition ribs",
+                                          "A solid axis-aligned plate in the enclosure frame.");
+    plate
+        .vector3(
+            "min_corner_m", [](dem::PlateOptions & p) -> auto& { return p.min_corner_m; },
+            "plate corner with the smallest coordinates")
+        .unit("m")
+        .required();
+    plate
+        .vector3(
+            "max_corner_m", [](dem::PlateOptions & p) -> auto& { return p.max_corner_m; },
+            "plate corner with the largest coordinates")
+        .unit("m")
+        .required();
+
+    TableBuilder<dem::EnclosureOptions> t(
+        "the cavity",
+        "The cavity in its own frame: axis along local z, bottom at z = 0, centred on the axis.");
+    t.choice(
+        "shape", [](dem::EnclosureOptions & e) -> auto& { return e.shape; },
+        dem::kEnclosureShapeNames, "cavity shape");
+    const auto cylinder = [](const dem::EnclosureOptions& e) {
+        return e.shape == dem::EnclosureShape::cylinder;
+    };
+    const auto box = [](const dem::EnclosureOptions& e) {
+        return e.shape == dem::EnclosureShape::box;
+    };
+    t.number(
+         "inner_diameter_m", [](dem::EnclosureOptions & e) -> auto& { return e.inner_diameter_m; },
+         "cylinder inner diameter")
+        .unit("m")
+        .bound(Bound::positive())
+        .when(cylinder, "only for shape = \"cylinder\"", true);
+    t.number(
+         "height_m", [](dem::EnclosureOptions & e) -> auto& { return e.height_m; },
+         "inner height along the damper axis")
+        .unit("m")
+        .bound(Bound::positive());
+    t.number(
+         "length_x_m", [](dem::EnclosureOptions & e) -> auto& { return e.length_x_m; },
+         "box inner size along local x")
+        .unit("m")
+        .bound(Bound::positive())
+        .when(box, "only for shape = \"box\"", true);
+    t.number(
+         "length_y_m", [](dem::EnclosureOptions & e) -> auto& { return e.length_y_m; },
+         "box inner size along local y")
+        .unit("m")
+        .bound(Bound::positive())
+        .when(box, "only for shape = \"box\"", true);
+    t.table(
+        "rods", [](dem::EnclosureOptions & e) -> auto& { return e.rods; }, rods.build());
+    t.array_of_tables(
+        "plates", [](dem::EnclosureOptions & e) -> auto& { return e.plates; }, plate.build());
+    return t.build();
+}
+
+std::shared_ptr<const config::Table> particles_table() {
+    TableBuilder<dem::SizeFraction> size("size distribution",
+                                         "One class of a discrete size distribution; the number "
+                                         "fractions must sum to 1.");
+    size.number(
+            "diameter_m", [](dem::SizeFraction & f) -> auto& { return f.diameter_m; },
+            "diameter of the class")
+        .unit("m")
+        .bound(Bound::positive())
+        .required();
+    size.number(
+            "number_fraction", [](dem::SizeFraction & f) -> auto& { return f.number_fraction; },
+            "share of the particle count")
+        .unit("-")
+        .bound(Bound::left_open(0.0, 1.0))
+        .required();
+
+    TableBuilder<dem::ParticleOptions> t("the particles");
+    t.integer(
+         "count", [](dem::ParticleOptions & p) -> auto& { return p.count; }, "number of spheres")
+        .bound(Bound::at_least(1));
+    t.number(
+         "diameter_m", [](dem::ParticleOptions & p) -> auto& { return p.diameter_m; },
+         "sphere diameter")
+        .unit("m")
+        .bound(Bound::positive())
+        .when([](const dem::ParticleOptions& p) { return p.size_distribution.empty(); },
+              "not used with [[sizes]]");
+    t.number(
+         "density_kg_m3",
+         [](dem::ParticleOptions & p) -> auto& { return p.material.density_kg_m3; },
+         "particle density")
+        .unit("kg/m^3")
+        .bound(Bound::positive())
+        .leaf("material.density_kg_m3");
+    t.number(
+         "youngs_modulus_pa",
+         [](dem::ParticleOptions & p) -> auto& { return p.material.youngs_modulus_pa; },
+         "particle Young's modulus (Hertz)")
+        .unit("Pa")
+        .bound(Bound::positive())
+        .leaf("material.youngs_modulus_pa");
+    t.number(
+         "poisson_ratio",
+         [](dem::ParticleOptions & p) -> auto& { return p.material.poisson_ratio; },
+         "particle Poisson ratio (Hertz)")
+        .unit("-")
+        .bound(Bound::closed(-0.999, 0.4999))
+        .leaf("material.poisson_ratio");
+    t.array_of_tables(
+         "sizes", [](dem::ParticleOptions & p) -> auto& { return p.size_distribution; },
+         size.build())
+        .leaf("size_distribution");
+    return t.build();
+}
+
+std::shared_ptr<const config::Table> contact_table() {
+    TableBuilder<ContactSpec> t("the contact law",
+                                "Normal, damping, tangential and rolling pieces with their "
+                                "coefficients (see docs/dem.md).");
+    t.choice(
+        "normal", [](ContactSpec & c) -> auto& { return c.normal; }, dem::kNormalLawNames,
+        "normal law");
+    t.choice(
+         "damping", [](ContactSpec & c) -> auto& { return c.damping; }, dem::kDampingLawNames,
+         "normal damping")
+        .doc(
+            "normal dashpot from the restitution coefficient: `restitution` picks the one that "
+            "matches the normal law, or name it (`linear_dashpot` with hooke, `hertz_dashpot` "
+            "with hertz)");
+    t.choice(
+         "tangential", [](ContactSpec & c) -> auto& { return c.tangential; },
+         dem::kTangentialLawNames, "tangential law")
+        .doc(
+            "stateless directional Coulomb (papers 000, 001) or a history spring capped by "
+            "Coulomb (static friction)");
+    t.choice(
+         "rolling", [](ContactSpec & c) -> auto& { return c.rolling; }, dem::kRollingLawNames,
+         "rolling resistance")
+        .doc("rolling resistance torque mu_r R* F_n");
+    t.number(
+         "normal_stiffness", [](ContactSpec & c) -> auto& { return c.normal_stiffness; },
+         "normal stiffness")
+        .unit("N/m (hooke), N/m^1.5 (hertz)")
+        .bound(Bound::positive())
+        .automatic(
+            "chosen per sweep so that the largest overlap at the largest expected impact "
+            "speed is max_overlap_fraction of the diameter");
+    t.number(
+         "max_overlap_fraction", [](ContactSpec & c) -> auto& { return c.max_overlap_fraction; },
+         "automatic stiffness: largest overlap / diameter")
+        .unit("-")
+        .bound(Bound::closed(1e-6, 0.2));
+    t.number(
+         "time_step_fraction", [](ContactSpec & c) -> auto& { return c.time_step_fraction; },
+         "DEM time step / contact time")
+        .unit("-")
+        .bound(Bound::closed(1e-3, 0.5));
+    t.number(
+         "restitution", [](ContactSpec & c) -> auto& { return c.particle_particle.restitution; },
+         "particle-particle coefficient of restitution")
+        .unit("-")
+        .bound(Bound::left_open(0.0, 1.0))
+        .leaf("particle_particle.restitution");
+    t.number(
+         "sliding_friction",
+         [](ContactSpec & c) -> auto& { return c.particle_particle.sliding_friction; },
+         "particle-particle sliding friction coefficient")
+        .unit("-")
+        .bound(Bound::non_negative())
+        .leaf("particle_particle.sliding_friction");
+    t.number(
+         "rolling_friction",
+         [](ContactSpec & c) -> auto& { return c.particle_particle.rolling_friction; },
+         "particle-particle rolling friction coefficient")
+        .unit("-")
+        .bound(Bound::non_negative())
+        .leaf("particle_particle.rolling_friction");
+    t.number(
+         "wall_restitution", [](ContactSpec & c) -> auto& { return c.wall_restitution; },
+         "particle-wall coefficient of restitution")
+        .unit("-")
+        .bound(Bound::left_open(0.0, 1.0))
+        .follows("restitution")
+        .leaf("particle_wall.restitution");
+    t.number(
+         "wall_sliding_friction", [](ContactSpec & c) -> auto& { return c.wall_sliding_friction; },
+         "particle-wall sliding friction coefficient")
+        .unit("-")
+        .bound(Bound::non_negative())
+        .follows("sliding_friction")
+        .leaf("particle_wall.sliding_friction");
+    t.number(
+         "wall_rolling_friction", [](ContactSpec & c) -> auto& { return c.wall_rolling_friction; },
+         "particle-wall rolling friction coefficient")
+        .unit("-")
+        .bound(Bound::non_negative())
+        .follows("rolling_friction")
+        .leaf("particle_wall.rolling_friction");
+    t.number(
+         "wall_youngs_modulus_pa",
+         [](ContactSpec & c) -> auto& { return c.wall_material.youngs_modulus_pa; },
+         "wall Young's modulus (Hertz)")
+        .unit("Pa")
+        .bound(Bound::positive())
+        .leaf("wall_material.youngs_modulus_pa");
+    t.number(
+         "wall_poisson_ratio",
+         [](ContactSpec & c) -> auto& { return c.wall_material.poisson_ratio; },
+         "wall Poisson ratio (Hertz)")
+        .unit("-")
+        .bound(Bound::closed(-0.999, 0.4999))
+        .leaf("wall_material.poisson_ratio");
+    t.number(
+         "tangential_stiffness_ratio",
+         [](ContactSpec & c) -> auto& { return c.tangential_stiffness_ratio; },
+         "coulomb_spring: tangential / normal stiffness")
+        .unit("-")
+        .bound(Bound::positive());
+    t.number(
+         "slip_regularisation_m_s",
+         [](ContactSpec & c) -> auto& { return c.slip_regularisation_m_s; },
+         "directional Coulomb and rolling: slip speed of full friction")
+        .unit("m/s")
+        .bound(Bound::positive());
+    return t.build();
+}
+
+std::shared_ptr<const config::Table> settle_table() {
+    TableBuilder<DamperSpec> t(
+        "settling under gravity",
+        "The filling settles under the arrangement's gravity until at rest; the bed is saved in "
+        "`OUT/settled/` and every sweep starts from it (see docs/dem.md).");
+    t.number(
+         "dt_s", [](DamperSpec & d) -> auto& { return d.settle.dt_s; }, "settling time step")
+        .unit("s")
+        .bound(Bound::positive());
+    t.number(
+         "max_time_s", [](DamperSpec & d) -> auto& { return d.settle.max_time_s; },
+         "give up after this simulated time")
+        .unit("s")
+        .bound(Bound::positive());
+    t.number(
+         "kinetic_threshold_j",
+         [](DamperSpec & d) -> auto& { return d.settle.kinetic_threshold_j; },
+         "at rest below this translational kinetic energy")
+        .unit("J")
+        .bound(Bound::positive());
+    t.choice(
+         "fill", [](DamperSpec & d) -> auto& { return d.fill; }, DamperSpec::kFillNames,
+         "how the bed is filled")
+        .doc(
+            "`random` inserts every sphere at random into the whole cavity and then settles the "
+            "bed (loose beds: random insertion jams near a solid fraction of 0.35-0.38); `pour` "
+            "fills in batches, each settled under gravity before the next goes into the space "
+            "above (dense beds, e.g. paper 002's 5,700 spheres in 30 x 30 x 50 mm, solid "
+            "fraction 0.53)");
+    return t.build();
+}
+
+}  // namespace
+
+std::shared_ptr<const config::Table> damper_table() {
+    TableBuilder<DamperSpec> t(
+        "a particle damper",
+        "A particle damper attached to a named point. Its enclosure's own mass belongs to the "
+        "structure (a `[[structure.beam.masses]]` entry); its particles are simulated (DEM) or, "
+        "with `model = \"rigid\"`, replaced by an equal rigid mass at the centre of a settled "
+        "bed.");
+    t.string(
+         "point", [](DamperSpec & d) -> auto& { return d.point; },
+         "named point the damper is attached to")
+        .required();
+    t.vector3(
+         "mount_offset_m", [](DamperSpec & d) -> auto& { return d.mount_offset_m; },
+         "enclosure origin (inner bottom centre) from the point at 0 deg without a block")
+        .unit("m");
+    t.number(
+         "bottom_thickness_m", [](DamperSpec & d) -> auto& { return d.bottom_thickness_m; },
+         "the enclosure's bottom plate: the enclosure stands, and turns, on its outer face")
+        .unit("m")
+        .bound(Bound::non_negative());
+    t.string(
+         "enclosure_mass", [](DamperSpec & d) -> auto& { return d.enclosure_mass; },
+         "the structure mass that is this damper's enclosure")
+        .optional()
+        .doc(
+            "name of the `[[structure.beam.masses]]` entry at the damper's point that is this "
+            "enclosure: its centre of gravity and principal inertia (given for 0 deg) move and "
+            "turn with the mounting of each arrangement");
+    t.boolean(
+        "locked", [](DamperSpec & d) -> auto& { return d.locked; },
+        "particles locked to the enclosure: a rigid bed whose load still goes through the "
+        "coupling loop (a check against the linear model)");
+    t.choice(
+        "model", [](DamperSpec & d) -> auto& { return d.model; }, DamperSpec::kModelNames,
+        "dem: simulated particles; rigid: an equal rigid mass");
+    t.integer(
+         "threads", [](DamperSpec & d) -> auto& { return d.threads; },
+         "OpenMP threads of this damper's DEM (sweeps already run in parallel; 0: OpenMP's "
+         "default)")
+        .bound(Bound::non_negative())
+        .leaf("solver.threads");
+    t.number(
+         "guard_overlap_fraction", [](DamperSpec & d) -> auto& { return d.guard_overlap_fraction; },
+         "overlap / radius beyond which the run stops with an error")
+        .unit("-")
+        .bound(Bound::closed(1e-6, 1.0))
+        .leaf("solver.max_overlap_fraction");
+    t.table(
+         "enclosure", [](DamperSpec & d) -> auto& { return d.enclosure; }, enclosure_table())
+        .leaf("solver.enclosure");
+    t.table(
+         "particles", [](DamperSpec & d) -> auto& { return d.particles; }, particles_table())
+        .leaf("solver.particles");
+    t.table(
+         "contact", [](DamperSpec & d) -> auto& { return d.contact; }, contact_table())
+        .leaf("solver.contact");
+    t.table(
+         "settle", [](DamperSpec & d) -> auto& { return d; }, settle_table())
+        .leaf("settle");
+    t.check([](const DamperSpec& d) { return d.validate(); });
+    return t.build();
+}
+
+}  // namespace sb::bench::schema

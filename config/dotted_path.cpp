@@ -1,0 +1,197 @@
+// Getting and setting config values by dotted path.
+#include "config/dotted_path.hpp"
+
+#include <optional>
+
+#include "config/read.hpp"
+
+namespace sb::config {
+namespace {
+
+/// The value a path names: its entry, the object holding it and, for NAME = number tables,
+/// the element.
+struct Target {
+    const Table* table = nullptr;
+    const Entry* entry = nullptr;
+    void* object = nullptr;
+    bool is_element = false;
+    std::size_t index = 0;
+    std::string path;  ///< canonical text of the path
+};
+
+[[noreturn]] void fail(std::string_view path, std::string constraint, std::string meaning,
+                       const Origin& origin) {
+    ConfigError e;
+    e.file = origin.file;
+    e.line = origin.line;
+    e.column = origin.column;
+    e.key_path = std::string(path);
+    e.constraint = std::move(constraint);
+    e.meaning = std::move(meaning);
+    throw ConfigException({e});
+}
+
+const char* kSeeKeys = "see docs/config.md or `shakerbench keys CONFIG` for the keys";
+
+Target resolve(const Table& root, void* object, std::string_view path, const Origin& origin) {
+    std::vector<PathPart> parts;
+    if (!split_path(path, parts)) {
+        fail(path, "is not a dotted key path (a.b.c, a.b[0].c)", kSeeKeys, origin);
+    }
+    Target t;
+    t.table = &root;
+    t.object = object;
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+        const PathPart& part = parts[i];
+        if (part.is_index) fail(path, "unknown key", kSeeKeys, origin);
+        const Entry* e = t.table->find(part.name);
+        if (e == nullptr) fail(path, "unknown key", kSeeKeys, origin);
+        t.path = join_path(t.path, part.name);
+        if (!e->applies(t.object)) {
+            fail(t.path, "does not apply: " + e->decl.inactive_reason, e->decl.meaning, origin);
+        }
+        const bool last = i + 1 == parts.size();
+        switch (e->decl.type) {
+            case Type::table:
+                if (last) fail(path, "is a table, not a value", e->decl.meaning, origin);
+                t.object = e->sub(t.object);
+                t.table = e->table.get();
+                break;
+            case Type::named_tables:
+            case Type::named_numbers: {
+                if (last || parts[i + 1].is_index) {
+                    fail(path, "names a table: add the name of one of its entries", e->decl.meaning,
+                         origin);
+                }
+                const std::string& name = parts[++i].name;
+                std::optional<std::size_t> found;
+                for (std::size_t k = 0; k < e->size(t.object); ++k) {
+                    if (e->element_name(t.object, k) == name) found = k;
+                }
+                t.path = join_path(t.path, name);
+                if (!found) {
+                    fail(t.path, "the config has no such entry", e->decl.meaning, origin);
+                }
+                if (e->decl.type == Type::named_numbers) {
+                    if (i + 1 != parts.size()) fail(path, "unknown key", kSeeKeys, origin);
+                    t.entry = e;
+                    t.is_element = true;
+                    t.index = *found;
+                    return t;
+                }
+                t.object = e->element(t.object, *found);
+                t.table = e->table.get();
+                if (i + 1 == parts.size()) {
+                    fail(path, "is a table, not a value", e->decl.meaning, origin);
+                }
+                break;
+            }
+            case Type::array_of_tables: {
+                if (last || !parts[i + 1].is_index) {
+                    fail(path, "names an array of tables: add an index, [0] for the first",
+                         e->decl.meaning, origin);
+                }
+                const std::size_t index = parts[++i].index;
+                t.path = index_path(t.path, index);
+                if (index >= e->size(t.object)) {
+                    fail(t.path,
+                         "the config has " + std::to_string(e->size(t.object)) + " such entries",
+                         e->decl.meaning, origin);
+                }
+                t.object = e->element(t.object, index);
+                t.table = e->table.get();
+                if (i + 1 == parts.size()) {
+                    fail(path, "is a table, not a value", e->decl.meaning, origin);
+                }
+                break;
+            }
+            default:
+                if (!last) fail(path, "unknown key", kSeeKeys, origin);
+                t.entry = e;
+                return t;
+        }
+    }
+    fail(path, "unknown key", kSeeKeys, origin);
+}
+
+const Declaration& decl_of(const Target& t) {
+    return t.is_element ? t.entry->element_decl : t.entry->decl;
+}
+
+Value current(const Target& t) {
+    return t.is_element ? t.entry->element_get(t.object, t.index)
+                        : effective_value(*t.table, *t.entry, t.object);
+}
+
+Value stored(const Target& t) {
+    return t.is_element ? t.entry->element_get(t.object, t.index) : t.entry->get(t.object);
+}
+
+void assign(const Target& t, const Value& v) {
+    if (t.is_element) {
+        t.entry->element_set(t.object, t.index, v);
+    } else {
+        t.entry->set(t.object, v);
+    }
+}
+
+/// Applies a checked value, runs the checks, and undoes it when they fail.
+void apply(const Table& root, void* object, SourceMap& where, const Target& t, const Value& v,
+           const Origin& origin) {
+    const Value before = stored(t);
+    assign(t, v);
+    where.overrides.emplace_back(t.path, origin);
+    Diagnostics diagnostics;
+    check(root, object, where, diagnostics);
+    if (!diagnostics.empty()) {
+        assign(t, before);
+        where.overrides.pop_back();
+        diagnostics.throw_if_any();
+    }
+}
+
+}  // namespace
+
+Value get(const Table& root, const void* object, std::string_view path) {
+    return current(resolve(root, const_cast<void*>(object), path, {"<get>", 0, 0}));
+}
+
+const Declaration& declaration(const Table& root, const void* object, std::string_view path) {
+    return decl_of(resolve(root, const_cast<void*>(object), path, {"<get>", 0, 0}));
+}
+
+void set(const Table& root, void* object, SourceMap& where, std::string_view path, Value value,
+         const Origin& origin) {
+    const Target t = resolve(root, object, path, origin);
+    const Declaration& d = decl_of(t);
+    const std::string text = value_text(value);
+    if (auto problem = accept(d, value)) {
+        Diagnostics diagnostics;
+        diagnostics.add(origin, t.path, text, problem->constraint, d.meaning_with_unit());
+        diagnostics.throw_if_any();
+    }
+    apply(root, object, where, t, value, origin);
+}
+
+void set_text(const Table& root, void* object, SourceMap& where, std::string_view path,
+              std::string_view text, const Origin& origin) {
+    const Target t = resolve(root, object, path, origin);
+    Diagnostics diagnostics;
+    Value value;
+    if (!value_from_text(decl_of(t), text, t.path, origin, diagnostics, value)) {
+        diagnostics.throw_if_any();
+    }
+    apply(root, object, where, t, value, origin);
+}
+
+bool split_assignment(std::string_view assignment, std::string& key, std::string& value) {
+    const auto eq = assignment.find('=');
+    if (eq == std::string_view::npos || eq == 0) return false;
+    key = std::string(assignment.substr(0, eq));
+    value = std::string(assignment.substr(eq + 1));
+    while (!key.empty() && key.back() == ' ') key.pop_back();
+    while (!value.empty() && value.front() == ' ') value.erase(value.begin());
+    return true;
+}
+
+}  // namespace sb::config

@@ -1,0 +1,209 @@
+// Campaign config values by dotted path: changed after loading as if the file held them,
+// defaults that follow other keys resolved after the change, and every violation a leaf
+// module can report placed at a declared key.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "bench/campaign_config.hpp"
+#include "bench/config_schema.hpp"
+#include "bench/frequency_grid.hpp"
+#include "config/errors.hpp"
+#include "structure/linear_model.hpp"
+#include "structure/modal_analysis.hpp"
+
+namespace sb::bench {
+namespace {
+
+CampaignConfig builtin() {
+    return load_campaign_config_text(builtin_config_text(), kBuiltinConfigName);
+}
+
+/// The formatted errors of `change`, which must throw config::ConfigException.
+template <class Change>
+std::vector<std::string> errors_of(Change change) {
+    try {
+        change();
+    } catch (const config::ConfigException& e) {
+        std::vector<std::string> out;
+        for (const auto& error : e.errors()) out.push_back(error.format());
+        return out;
+    }
+    ADD_FAILURE() << "the change was accepted";
+    return {};
+}
+
+double first_driven_mode_hz(const CampaignConfig& config) {
+    const auto model = structure::build_linear_model(config.structure, config.base_dir);
+    const auto basis = structure::compute_modes(model, config.structure.damping, 6);
+    return bench::first_driven_mode_hz(basis, Eigen::Vector3d::UnitZ());
+}
+
+TEST(ConfigPaths, EveryDeclaredValueOfTheBuiltInConfigCanBeReadByItsPath) {
+    const CampaignConfig config = builtin();
+    EXPECT_EQ(std::get<double>(get_value(config, "dampers.pd.contact.sliding_friction")), 0.6);
+    EXPECT_EQ(std::get<double>(get_value(config, "structure.beam.youngs_modulus_pa")), 72e9);
+    EXPECT_EQ(std::get<double>(get_value(config, "structure.beam.masses[5].mass_kg")), 0.0238);
+    EXPECT_EQ(std::get<double>(get_value(config, "structure.beam.points.damper")), 0.533);
+    EXPECT_EQ(std::get<std::string>(get_value(config, "arrangements.H-0.oscillation")),
+              "horizontal");
+    EXPECT_TRUE(std::holds_alternative<std::monostate>(
+        get_value(config, "dampers.pd.contact.normal_stiffness")));
+}
+
+TEST(ConfigPaths, ScalingTheStiffnessOfTheBeamByFourDoublesItsFirstMode) {
+    // Young's and shear moduli together scale every stiffness term, so every frequency
+    // scales exactly with their square root.
+    CampaignConfig config = builtin();
+    const double before = first_driven_mode_hz(config);
+    set_value(config, "structure.beam.youngs_modulus_pa", 4.0 * 72e9, "test");
+    set_value(config, "structure.beam.shear_modulus_pa", 4.0 * 27e9, "test");
+    EXPECT_NEAR(first_driven_mode_hz(config) / before, 2.0, 1e-9);
+}
+
+TEST(ConfigPaths, WallFrictionFollowsAParticleFrictionChangedAfterLoading) {
+    CampaignConfig config = builtin();
+    set_value_text(config, "dampers.pd.contact.sliding_friction", "0.3", "--set");
+    const auto& contact = config.campaign.dampers.front().contact;
+    EXPECT_EQ(contact.particle_particle.sliding_friction, 0.3);
+    EXPECT_EQ(contact.particle_wall().sliding_friction, 0.3);
+    EXPECT_EQ(std::get<double>(get_value(config, "dampers.pd.contact.wall_sliding_friction")), 0.3);
+    // Once given, the wall's own value stays.
+    set_value_text(config, "dampers.pd.contact.wall_sliding_friction", "0.2", "--set");
+    set_value_text(config, "dampers.pd.contact.sliding_friction", "0.5", "--set");
+    EXPECT_EQ(config.campaign.dampers.front().contact.particle_wall().sliding_friction, 0.2);
+}
+
+TEST(ConfigPaths, AMassGivenByItsPointMovesWithThePoint) {
+    CampaignConfig config = builtin();
+    set_value_text(config, "structure.beam.points.acc4", "0.5", "--set");
+    const auto beam = config.structure.beam.resolved();
+    bool found = false;
+    for (const auto& m : beam.masses) {
+        if (m.name == "accelerometer 4") {
+            EXPECT_EQ(m.x_m, 0.5);
+            found = true;
+        }
+    }
+    EXPECT_TRUE(found);
+}
+
+TEST(ConfigPaths, AnOutOfBoundValueIsRefusedNamingTheKeyAndItsOrigin) {
+    CampaignConfig config = builtin();
+    EXPECT_EQ(errors_of([&] { set_value_text(config, "structure.beam.length_m", "-1", "--set"); }),
+              (std::vector<std::string>{
+                  "--set: structure.beam.length_m = -1: must be > 0 (beam length [m])"}));
+    EXPECT_EQ(config.structure.beam.length_m, 0.543);
+}
+
+TEST(ConfigPaths, AValueBreakingACheckAcrossModulesIsRefusedAndUndone) {
+    CampaignConfig config = builtin();
+    // The damper's point must exist: renaming it to nothing is refused as the file would be.
+    const auto errors =
+        errors_of([&] { set_value_text(config, "dampers.pd.point", "nowhere", "--set"); });
+    ASSERT_EQ(errors.size(), 2u);
+    EXPECT_EQ(errors[0],
+              "--set: dampers.pd.point = \"nowhere\": must name a point of the "
+              "structure (named point the damper is attached to)");
+    // The enclosure mass, still in the file, is no longer at the damper's point.
+    EXPECT_NE(errors[1].find(":30:18: dampers.pd.enclosure_mass = \"enclosure\""),
+              std::string::npos)
+        << errors[1];
+    EXPECT_EQ(config.campaign.dampers.front().point, "damper");
+    // A beam thicker than it is wide, across two keys of the structure module.
+    EXPECT_EQ(errors_of([&] {
+                  set_value(config, "structure.beam.thickness_m", 0.06, "calibration");
+              }).size(),
+              1u);
+}
+
+TEST(ConfigPaths, ApplyOverridesTakesKeyEqualsValueInOrder) {
+    CampaignConfig config = builtin();
+    apply_overrides(config, {"campaign.levels_g=[0.5]", "campaign.point_start=linear-steady-state",
+                             "dampers.pd.contact.normal_stiffness=2e5"});
+    EXPECT_EQ(config.campaign.levels_g, std::vector<double>{0.5});
+    EXPECT_EQ(config.campaign.point_start, CampaignSpec::PointStart::linear_steady_state);
+    EXPECT_EQ(config.campaign.dampers.front().contact.normal_stiffness, 2e5);
+    EXPECT_EQ(errors_of([&] { apply_overrides(config, {"campaign.seed"}); }).size(), 1u);
+}
+
+/// Every key a leaf module's validate() reports maps to a declared key of its table.
+void expect_every_violation_declared(const config::Table& table, const Violations& violations) {
+    ASSERT_FALSE(violations.empty());
+    for (const auto& v : violations) {
+        const auto mapped = config::map_leaf_key(table, v.key);
+        EXPECT_TRUE(mapped.has_value() && mapped->decl != nullptr) << v.key;
+    }
+}
+
+const config::Table& table_at(std::initializer_list<const char*> keys) {
+    const config::Table* t = &campaign_schema();
+    for (const char* key : keys) t = t->find(key)->table.get();
+    return *t;
+}
+
+TEST(ConfigPaths, EveryViolationOfADamperNamesADeclaredKey) {
+    DamperSpec d;
+    d.threads = -1;
+    d.guard_overlap_fraction = 2.0;
+    d.enclosure.inner_diameter_m = -1.0;
+    d.enclosure.height_m = 0.0;
+    d.enclosure.rods = {true, -1.0, -1.0, {0, 0, 0}};
+    d.enclosure.plates = {{{0, 0, 0}, {-1, 1, 1}}};
+    d.particles.count = 0;
+    d.particles.material = {-1.0, -1.0, 0.7};
+    d.particles.size_distribution = {{-1.0, 0.2}, {3e-3, -0.1}};
+    d.contact.normal_stiffness = -1.0;
+    d.contact.particle_particle = {1.5, -1.0, -1.0};
+    d.contact.wall_restitution = 0.0;
+    d.contact.wall_sliding_friction = -1.0;
+    d.contact.wall_rolling_friction = -1.0;
+    d.contact.wall_material = {7800.0, -1.0, 0.6};
+    d.contact.tangential_stiffness_ratio = 0.0;
+    d.contact.slip_regularisation_m_s = 0.0;
+    d.settle.dt_s = 0.0;
+    d.settle.max_time_s = 0.0;
+    d.settle.kinetic_threshold_j = 0.0;
+    expect_every_violation_declared(table_at({"dampers"}), d.validate());
+}
+
+TEST(ConfigPaths, EveryViolationOfTheStructureNamesADeclaredKey) {
+    CampaignConfig config = builtin();
+    auto& s = config.structure;
+    s.modes = 0;
+    s.beam.length_m = -1.0;
+    s.beam.thickness_m = 0.1;
+    s.beam.min_elements = 0;
+    s.beam.supports.front().x_m = -1.0;
+    s.beam.points.front().x_m = -1.0;
+    s.beam.masses.front().point = "nowhere";
+    s.beam.masses.back().mass_kg = 0.0;
+    s.damping.default_ratio = 1.0;
+    s.damping.modal_ratios = {0.5, 2.0};
+    s.excitation.direction = Eigen::Vector3d::Zero();
+    expect_every_violation_declared(table_at({"structure"}), s.validate());
+}
+
+TEST(ConfigPaths, EveryViolationOfTheControllerNamesADeclaredKey) {
+    control::ControllerOptions c;
+    c.tolerance = 0.0;
+    c.window_periods = 2;
+    c.early_periods = 5;
+    c.transient_periods = -1;
+    c.max_periods = 1;
+    c.closest_rerun_periods = 0;
+    c.initial_amplitude = -1.0;
+    c.min_amplitude = -1.0;
+    c.max_step_factor = 1.0;
+    c.overshoot = -1.0;
+    c.limit_cycle_jump = 0.5;
+    c.limit_cycle_periods = 5;
+    c.max_restarts = -1;
+    c.drift_horizon_periods = -1;
+    expect_every_violation_declared(table_at({"controller"}), c.validate());
+}
+
+}  // namespace
+}  // namespace sb::bench
