@@ -37,6 +37,7 @@ struct IdentifyArgs {
     double mass = 0.0;
     bool no_residual = false;
     bool no_plots = false;
+    std::string closest = "skip";  ///< skip | use (id::ClosestPolicy)
 };
 
 /// A command-line value that cannot be used with this input: exit 2 with the message.
@@ -54,6 +55,30 @@ void print_row(const std::string& arrangement, double level_g, const char* metho
         std::printf("%-12s %8.4g  %-18s %s: %s\n", arrangement.c_str(), level_g, method,
                     std::string(id::to_string(e.status)).c_str(), e.message.c_str());
     }
+}
+
+/// Frequencies as "6.301, 6.412 Hz" (6 significant digits, enough to tell grid points apart).
+std::string frequency_list(const std::vector<double>& frequency_hz) {
+    std::string text;
+    for (double f : frequency_hz) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.6g", f);
+        text += (text.empty() ? "" : ", ") + std::string(buf);
+    }
+    return text + " Hz";
+}
+
+/// One line per level whose points with status `closest` were left out or, with
+/// `--closest use`, kept: such points never held the target level, and a reader of the table
+/// must know whether they are in it.
+void print_closest(const id::LevelIdentification& l) {
+    const auto line = [&l](const std::vector<double>& f, const char* what) {
+        if (f.empty()) return;
+        std::printf("%s %.6g g: %zu point%s with status closest %s (%s)\n", l.arrangement.c_str(),
+                    l.level_g, f.size(), f.size() == 1 ? "" : "s", what, frequency_list(f).c_str());
+    };
+    line(l.skipped_hz, "left out of the fits");
+    line(l.closest_used_hz, "kept in the fits by --closest use");
 }
 
 /// Every FRF record of a UFF58 file is one "level" (numbered from 0), named by ID line 1.
@@ -142,6 +167,7 @@ int run(const IdentifyArgs& args) {
     options.background_damping_ratio = args.background;
     options.effective_mass_kg = args.mass;
     options.residual.compensate = !args.no_residual;
+    options.closest = args.closest == "use" ? id::ClosestPolicy::use : id::ClosestPolicy::skip;
     const auto levels =
         directory ? identify_directory(input, args, options) : identify_uff(input, args, options);
 
@@ -156,6 +182,7 @@ int run(const IdentifyArgs& args) {
             std::printf("%-12s %8.4g  %-18s %12.5f W/T = %.6g\n", l.arrangement.c_str(), l.level_g,
                         "energy", l.capacity_frequency_hz, l.specific_damping_capacity);
         }
+        print_closest(l);
     }
     fs::create_directories(out);
     const auto csv = out / "damping.csv";
@@ -196,6 +223,12 @@ void register_identify_command(CLI::App& app, int& exit_code) {
         ->check(CLI::PositiveNumber);
     sub->add_flag("--no-residual", args->no_residual,
                   "do not fit and subtract the residual of other modes before the estimates");
+    sub->add_option("--closest", args->closest,
+                    "points whose controller ended in status closest (it never held the target "
+                    "level): skip leaves them out of the FRF and the fits, use keeps them; "
+                    "either way identify names them")
+        ->check(CLI::IsMember({"skip", "use"}))
+        ->capture_default_str();
     sub->add_flag("--no-plots", args->no_plots, "write no plot files");
     sub->callback([args, &exit_code]() {
         try {

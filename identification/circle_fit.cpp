@@ -241,6 +241,8 @@ ModalEstimate circle_fit_of(const Frf& input, const CircleFitOptions& options) {
     e.damping_spread =
         zetas.size() > 1 ? std::sqrt(var / static_cast<double>(zetas.size() - 1)) : 0.0;
     e.points_used = static_cast<int>(m);
+    e.frequencies_used_hz.assign(frf.frequency_hz.begin() + static_cast<long>(lo),
+                                 frf.frequency_hz.begin() + static_cast<long>(hi) + 1);
     if (!(mean > 0.0) || !std::isfinite(mean)) {
         return failed_estimate(EstimateStatus::fit_failed, "non-positive circle-fit damping");
     }

@@ -96,9 +96,18 @@ std::vector<LevelIdentification> identify_recording(const Recording& rec,
     };
     std::vector<std::pair<std::string, double>> order;
     std::map<std::pair<std::string, double>, std::map<double, Spectra>> groups;
+    std::map<std::pair<std::string, double>, std::vector<double>> closest;
+    const bool skip = options.closest == ClosestPolicy::skip;
     for (const auto& p : rec.points) {
         const auto key = std::make_pair(p.arrangement, p.level_g);
-        if (groups.find(key) == groups.end()) order.push_back(key);
+        if (groups.find(key) == groups.end()) {
+            order.push_back(key);
+            groups[key];  // the level keeps its place even if every point is left out
+        }
+        if (p.status == "closest") {
+            closest[key].push_back(p.frequency_hz);
+            if (skip) continue;
+        }
         const std::complex<double> x = p.values[ref].amplitude;
         std::complex<double> y = p.values[resp].amplitude;
         if (base) y -= x;  // relative transmissibility (response − table)/table
@@ -117,6 +126,9 @@ std::vector<LevelIdentification> identify_recording(const Recording& rec,
         }
         out.push_back(identify_frf(key.first, key.second, frf, options, force_reference));
         out.back().channel = rec.channels[resp].name;
+        auto& flagged = skip ? out.back().skipped_hz : out.back().closest_used_hz;
+        flagged = closest[key];
+        std::sort(flagged.begin(), flagged.end());
     }
     return out;
 }
@@ -133,7 +145,8 @@ std::vector<DampingRow> damping_rows(const std::vector<LevelIdentification>& lev
             if (!e->ok() || (m == Method::rational_fraction && !include_rational_fraction))
                 continue;
             rows.push_back({l.arrangement, l.level_g, e->natural_frequency_hz, e->damping_ratio,
-                            std::string(to_string(m))});
+                            std::string(to_string(m)), e->points_used, e->frequencies_used_hz,
+                            static_cast<int>(l.skipped_hz.size())});
         }
     }
     return rows;

@@ -15,6 +15,15 @@
 
 namespace sb::identification {
 
+/// What identify_recording does with points whose controller ended in status `closest`: it
+/// never held the target RMS within tolerance and kept the amplitude closest to it, so the
+/// point belongs to another level (and, near resonance of a nonlinear specimen, to another
+/// FRF). A lab engineer leaves such points out of the fits and says so.
+enum class ClosestPolicy {
+    skip,  ///< left out of the FRF and therefore of every fit (LevelIdentification::skipped_hz)
+    use,   ///< kept like any other point (LevelIdentification::closest_used_hz)
+};
+
 /// Options of identify_recording.
 struct IdentifyOptions {
     /// Response channel; empty: the control channel, else the first response channel.
@@ -29,6 +38,8 @@ struct IdentifyOptions {
     /// Effective (modal) mass at the response point [kg] for the specific damping capacity
     /// W/T; 0 skips it. Needs force excitation with a force reference.
     double effective_mass_kg = 0.0;
+    /// Points with status `closest` (identify_recording only; an FRF has no statuses).
+    ClosestPolicy closest = ClosestPolicy::skip;
 };
 
 /// Everything identified at one arrangement and level.
@@ -46,6 +57,13 @@ struct LevelIdentification {
     double specific_damping_capacity = std::numeric_limits<double>::quiet_NaN();
     double capacity_frequency_hz =
         std::numeric_limits<double>::quiet_NaN();  ///< where ψ is taken [Hz]
+    /// Frequencies of the points with status `closest` left out of the FRF (ClosestPolicy::
+    /// skip), one per point (a repeat counts), ascending [Hz]. A frequency also measured by a
+    /// point that was kept stays on the FRF grid.
+    std::vector<double> skipped_hz{};
+    /// Frequencies of the points with status `closest` kept in the FRF (ClosestPolicy::use),
+    /// one per point, ascending [Hz], so that they are flagged rather than silently used.
+    std::vector<double> closest_used_hz{};
 };
 
 /// The three estimators on one FRF, background subtracted; W/T when `force_reference` (the
@@ -53,9 +71,11 @@ struct LevelIdentification {
 LevelIdentification identify_frf(const std::string& arrangement, double level_g, const Frf& frf,
                                  const IdentifyOptions& options, bool force_reference);
 
-/// Groups points by arrangement and level (in order of first appearance), combines repeats
-/// (same frequency) by H1 = Σ Y conj(X) / Σ |X|², builds the FRF and runs the three
-/// estimators (identify_frf).
+/// Groups points by arrangement and level (in order of first appearance), leaves out the
+/// points with status `closest` unless options.closest is ClosestPolicy::use, combines
+/// repeats (same frequency) by H1 = Σ Y conj(X) / Σ |X|², builds the FRF and runs the three
+/// estimators (identify_frf). A level whose points are all left out keeps its place with an
+/// empty FRF and estimates that say too-few-points.
 /// Force excitation: response/reference in the form of the response quantity (acceleration →
 /// accelerance, velocity → mobility, displacement → receptance). Base excitation: the relative
 /// transmissibility, exact for a base-excited SDOF. Throws std::invalid_argument (naming the
@@ -64,7 +84,9 @@ std::vector<LevelIdentification> identify_recording(const Recording& recording,
                                                     const IdentifyOptions& options = {});
 
 /// damping.csv rows of the successful estimates; methods half-power and circle-fit (the two
-/// formats.md lists) and, when `include_rational_fraction`, rational-fraction.
+/// formats.md lists) and, when `include_rational_fraction`, rational-fraction. Each row
+/// carries the estimate's points_used and frequencies_used_hz and the level's number of
+/// skipped points.
 std::vector<DampingRow> damping_rows(const std::vector<LevelIdentification>& levels,
                                      bool include_rational_fraction = false);
 

@@ -136,6 +136,8 @@ ModalEstimate half_power_of(const Frf& input, HalfPowerForm form) {
     ModalEstimate e;
     e.status = EstimateStatus::ok;
     e.points_used = static_cast<int>(m);
+    e.frequencies_used_hz.assign(frf.frequency_hz.begin() + static_cast<long>(lo),
+                                 frf.frequency_hz.begin() + static_cast<long>(hi) + 1);
     double wn = 0.0;
     if (form == HalfPowerForm::mobility) {
         // Mobility: ω1ω2 = ωn², ζ = (ω2 − ω1)/(2ωn) exactly.

@@ -2,6 +2,7 @@
 #include "identification/harmonics.hpp"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "identification/spectrum.hpp"
@@ -55,6 +56,21 @@ HarmonicAnalysis analyse_harmonics(std::span<const double> x, double sample_rate
     const double fundamental = std::abs(h.amplitude.size() > 1 ? h.amplitude[1] : 0.0);
     h.thd = fundamental > 0.0 ? std::sqrt(sum) / fundamental : 0.0;
     return h;
+}
+
+double harmonic_ratio(const HarmonicAnalysis& analysis, int k) {
+    if (k < 1) throw std::invalid_argument("harmonic_ratio: the order k must be >= 1");
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const auto order = static_cast<std::size_t>(k);
+    // Bin kP must lie below Nyquist (2kP < N), as in analyse_harmonics: a harmonic there is
+    // not zero but unknown.
+    if (order >= analysis.amplitude.size() ||
+        2L * k * static_cast<long>(analysis.periods) >= static_cast<long>(analysis.samples)) {
+        return nan;
+    }
+    const double fundamental = std::abs(analysis.amplitude[1]);
+    if (!(fundamental > 0.0)) return nan;
+    return std::abs(analysis.amplitude[order]) / fundamental;
 }
 
 std::complex<double> fundamental_amplitude(std::span<const double> x, double sample_rate_hz,

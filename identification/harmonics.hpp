@@ -29,6 +29,12 @@ int whole_periods(std::size_t samples, double sample_rate_hz, double frequency_h
 HarmonicAnalysis analyse_harmonics(std::span<const double> x, double sample_rate_hz,
                                    double frequency_hz, int max_harmonic = 10);
 
+/// |X_k|/|X_1| of an analysis [-]: the distortion of order k, the Fourier coefficient k of a
+/// periodic record (Bendat & Piersol, Random Data) over the fundamental. NaN when harmonic k
+/// was not analysed (above max_harmonic, or at or above Nyquist, where analyse_harmonics
+/// leaves it zero) or the fundamental is zero. Throws std::invalid_argument for k < 1.
+double harmonic_ratio(const HarmonicAnalysis& analysis, int k);
+
 /// The fundamental complex amplitude only (harmonic 1 of analyse_harmonics).
 std::complex<double> fundamental_amplitude(std::span<const double> x, double sample_rate_hz,
                                            double frequency_hz);

@@ -4,6 +4,7 @@
 #include <limits>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace sb::identification {
 
@@ -32,6 +33,10 @@ struct ModalEstimate {
     /// Standard deviation of the per-pair damping ratios (circle fit) [-]; 0 for other methods.
     double damping_spread = 0.0;
     int points_used = 0;  ///< grid points entering the estimate [-]
+    /// Frequencies of those grid points, ascending [Hz] (points_used of them): which points an
+    /// estimate rests on, so that a reader can see whether a doubtful point took part. The
+    /// residual fit of residual.hpp, when on, rests on a wider run (ResidualFit::points_used).
+    std::vector<double> frequencies_used_hz{};
     /// Residual of the other modes at f_n over this mode's response there [-], as fitted and
     /// subtracted before the estimate (residual.hpp); 0 when no residual was subtracted.
     double residual_ratio = 0.0;

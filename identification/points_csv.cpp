@@ -2,6 +2,7 @@
 #include <array>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -16,6 +17,16 @@ namespace sb::identification {
 namespace {
 const char* const kFixedColumns[] = {"arrangement", "level_g", "frequency_hz", "status", "series"};
 const char* const kSuffixes[] = {"_rms", "_re", "_im"};
+/// Optional per channel, as a pair: |X_2|/|X_1| and |X_3|/|X_1| (ChannelValue::h2_ratio,
+/// h3_ratio). Written after every channel's three value columns, so that the columns of a
+/// file without harmonics keep their positions.
+const char* const kHarmonicSuffixes[] = {"_h2", "_h3"};
+/// Harmonic columns of a channel in points.csv (none, or both).
+struct HarmonicColumns {
+    bool present = false;
+    std::size_t h2 = 0;
+    std::size_t h3 = 0;
+};
 /// A series must span a whole number of periods to this fraction of a period: time stamps
 /// printed with 6 significant digits (other tools) give ~1e-6 relative, and an excitation
 /// frequency printed with 6 digits ~1e-6 × the number of periods.
@@ -57,16 +68,33 @@ TimeHistory load_series(const detail::CsvTable& t, const detail::CsvCell& cell,
 /// time axis (x(t) = Re{X e^{iωt}} with t = time_s: the analysis starts at t0 = time_s[0],
 /// so X = X' e^{−iωt0}). The sample rate is taken from the whole-period count (n f / P),
 /// which the check above has established, rather than from rounded time stamps.
+/// The harmonic ratios come from the same analysis (harmonics.hpp): |X_k| does not depend on
+/// the time origin, so they need no phase reference.
 ChannelValue from_series(const TimeHistory& h, std::size_t column, double frequency_hz) {
     const double periods =
         std::round(static_cast<double>(h.time_s.size()) * frequency_hz / h.sample_rate_hz());
     const double fs = static_cast<double>(h.time_s.size()) * frequency_hz / periods;
     ChannelValue v;
     const double t0 = h.time_s.front();
-    v.amplitude = fundamental_amplitude(h.columns[column], fs, frequency_hz) *
-                  std::polar(1.0, -hz_to_rad_s(frequency_hz) * t0);
+    const HarmonicAnalysis analysis = analyse_harmonics(h.columns[column], fs, frequency_hz, 3);
+    v.amplitude = analysis.amplitude[1] * std::polar(1.0, -hz_to_rad_s(frequency_hz) * t0);
     v.rms = rms_over_whole_periods(h.columns[column], fs, frequency_hz);
+    v.h2_ratio = harmonic_ratio(analysis, 2);
+    v.h3_ratio = harmonic_ratio(analysis, 3);
     v.from_series = true;
+    return v;
+}
+
+/// A harmonic ratio cell: empty is NaN (not known), otherwise a finite number >= 0.
+double ratio_cell(const detail::CsvTable& t, const detail::CsvCell& cell,
+                  const std::string& column_name) {
+    if (cell.text.empty()) return std::numeric_limits<double>::quiet_NaN();
+    const double v = detail::number(t, cell, column_name);
+    if (v < 0.0) {
+        throw FileError(t.file, cell.line, cell.column,
+                        "column '" + column_name + "': '" + cell.text +
+                            "' is negative; a ratio of magnitudes is >= 0");
+    }
     return v;
 }
 
@@ -84,6 +112,7 @@ void read_points_csv(const std::filesystem::path& path, Recording& rec) {
         for (const char* c : kFixedColumns) known = known || h.text == c;
         for (const auto& ch : rec.channels) {
             for (const char* s : kSuffixes) known = known || h.text == ch.name + s;
+            for (const char* s : kHarmonicSuffixes) known = known || h.text == ch.name + s;
         }
         if (!known) {
             const std::string names = channel_list(rec);
@@ -114,6 +143,22 @@ void read_points_csv(const std::filesystem::path& path, Recording& rec) {
                         " for channel '" + ch.name + "' declared in recording.toml");
         }
         chan_cols.push_back(c);
+    }
+    // Harmonic columns are optional (a measured recording from another tool may have none),
+    // but come in pairs: a file with only one of them is more likely cut than meant.
+    std::vector<HarmonicColumns> harmonic_cols;
+    for (const auto& ch : rec.channels) {
+        const auto h2 = col.find(ch.name + kHarmonicSuffixes[0]);
+        const auto h3 = col.find(ch.name + kHarmonicSuffixes[1]);
+        HarmonicColumns hc;
+        if (h2 != col.end() || h3 != col.end()) {
+            const bool has_h2 = h2 != col.end();
+            need(ch.name + kHarmonicSuffixes[has_h2 ? 1 : 0],
+                 " for channel '" + ch.name + "': '" + ch.name + kHarmonicSuffixes[has_h2 ? 0 : 1] +
+                     "' is present and the two harmonic columns come as a pair");
+            hc = {true, h2->second, h3->second};
+        }
+        harmonic_cols.push_back(hc);
     }
     for (const auto& row : t.rows) {
         PointRow p;
@@ -156,13 +201,21 @@ void read_points_csv(const std::filesystem::path& path, Recording& rec) {
                                         "' has no column '" + n + "'");
                 }
                 p.values.push_back(from_series(p.history, k, p.frequency_hz));
-                continue;
+            } else {
+                ChannelValue v;
+                v.rms = detail::number(t, row[cc[0]], n + "_rms");
+                v.amplitude = {detail::number(t, row[cc[1]], n + "_re"),
+                               detail::number(t, row[cc[2]], n + "_im")};
+                p.values.push_back(v);
             }
-            ChannelValue v;
-            v.rms = detail::number(t, row[cc[0]], n + "_rms");
-            v.amplitude = {detail::number(t, row[cc[1]], n + "_re"),
-                           detail::number(t, row[cc[2]], n + "_im")};
-            p.values.push_back(v);
+            // A number in the file is never replaced: a cell given wins over the series.
+            const auto& hc = harmonic_cols[c];
+            if (!hc.present) continue;
+            auto& v = p.values.back();
+            if (!row[hc.h2].text.empty() || !v.from_series)
+                v.h2_ratio = ratio_cell(t, row[hc.h2], n + kHarmonicSuffixes[0]);
+            if (!row[hc.h3].text.empty() || !v.from_series)
+                v.h3_ratio = ratio_cell(t, row[hc.h3], n + kHarmonicSuffixes[1]);
         }
         rec.points.push_back(std::move(p));
     }
@@ -171,11 +224,24 @@ void read_points_csv(const std::filesystem::path& path, Recording& rec) {
 void write_points_csv(const std::filesystem::path& path, const Recording& rec) {
     std::ofstream f(path, std::ios::binary);
     if (!f) throw FileError(path.string(), 0, 0, "cannot open the file for writing");
+    // A channel gets its harmonic columns when any row knows one of its ratios.
+    std::vector<bool> harmonics(rec.channels.size(), false);
+    for (const auto& p : rec.points) {
+        for (std::size_t c = 0; c < p.values.size() && c < harmonics.size(); ++c) {
+            harmonics[c] = harmonics[c] || std::isfinite(p.values[c].h2_ratio) ||
+                           std::isfinite(p.values[c].h3_ratio);
+        }
+    }
     f << "arrangement,level_g,frequency_hz,status,series";
     for (const auto& ch : rec.channels)
         f << ',' << ch.name << "_rms," << ch.name << "_re," << ch.name << "_im";
+    for (std::size_t c = 0; c < rec.channels.size(); ++c) {
+        if (harmonics[c])
+            f << ',' << rec.channels[c].name << "_h2," << rec.channels[c].name << "_h3";
+    }
     f << '\n';
     using detail::exact_text;
+    const auto ratio_text = [](double r) { return std::isfinite(r) ? exact_text(r) : ""; };
     for (const auto& p : rec.points) {
         detail::check_cell_text(p.arrangement, "arrangement");
         detail::check_cell_text(p.status, "status");
@@ -185,6 +251,11 @@ void write_points_csv(const std::filesystem::path& path, const Recording& rec) {
         for (const auto& v : p.values) {
             f << ',' << exact_text(v.rms) << ',' << exact_text(v.amplitude.real()) << ','
               << exact_text(v.amplitude.imag());
+        }
+        for (std::size_t c = 0; c < harmonics.size(); ++c) {
+            if (!harmonics[c]) continue;
+            const ChannelValue v = c < p.values.size() ? p.values[c] : ChannelValue{};
+            f << ',' << ratio_text(v.h2_ratio) << ',' << ratio_text(v.h3_ratio);
         }
         f << '\n';
     }

@@ -75,6 +75,8 @@ ModalEstimate rational_fraction_of(const Frf& frf, const RationalFractionOptions
     e.natural_frequency_hz = w_ref * std::sqrt(x(0)) / kTwoPi;  // ωn² = b0 (note §3.4)
     e.damping_ratio = x(1) / (2.0 * std::sqrt(x(0)));           // 2ζωn = b1
     e.points_used = count;
+    e.frequencies_used_hz.assign(frf.frequency_hz.begin() + static_cast<long>(lo),
+                                 frf.frequency_hz.begin() + static_cast<long>(hi) + 1);
     if (!(e.damping_ratio < 1.0)) {
         return failed_estimate(EstimateStatus::fit_failed, "fitted damping ratio >= 1");
     }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <complex>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,12 @@ struct ChannelValue {
     /// True when points.csv left the three cells empty and rms and amplitude were computed
     /// from the point's time history (fundamental over whole periods).
     bool from_series = false;
+    /// |X_2|/|X_1| of this channel over the steady window [-]; NaN when not known (a file
+    /// without the columns, an empty cell, a harmonic at or above Nyquist). A ratio that
+    /// differs between measurement and model points at nonlinear physics the model lacks
+    /// (contact, impacts of the particles), which the fundamental alone hides.
+    double h2_ratio = std::numeric_limits<double>::quiet_NaN();
+    double h3_ratio = std::numeric_limits<double>::quiet_NaN();  ///< |X_3|/|X_1| [-], as h2
 };
 
 /// One row of points.csv.
@@ -68,6 +75,12 @@ struct DampingRow {
     double natural_frequency_hz = 0.0;  ///< [Hz]
     double damping_ratio = 0.0;         ///< [-]
     std::string method;                 ///< half-power | circle-fit (| rational-fraction)
+    /// Grid points the estimate rests on [-]; 0 when not known (a file without the column).
+    int points_used = 0;
+    /// Their frequencies, ascending [Hz]; empty when not known.
+    std::vector<double> frequencies_used_hz{};
+    /// Points of this arrangement and level with status `closest` left out of the FRF [-].
+    int points_skipped = 0;
 };
 
 /// A whole recording directory.

@@ -17,7 +17,9 @@ namespace sb::identification {
 /// PointRow::history and checked: the file exists, time_s is uniform, its columns are
 /// channels of recording.toml, and it spans a whole number of periods of the row's frequency.
 /// A channel whose three cells (C_rms, C_re, C_im) are all empty is computed from the series
-/// (fundamental and rms over whole periods, ChannelValue::from_series).
+/// (fundamental and rms over whole periods, ChannelValue::from_series), and so are its
+/// harmonic ratios unless their cells hold numbers. The harmonic columns C_h2, C_h3 are
+/// optional but come as a pair; an empty cell is NaN, a number must be finite and >= 0.
 Recording read_recording(const std::filesystem::path& directory);
 
 /// Reads recording.toml only (info and channels).
@@ -27,7 +29,8 @@ Recording read_recording_toml(const std::filesystem::path& file);
 /// series paths are relative to the file's directory (see read_recording).
 void read_points_csv(const std::filesystem::path& file, Recording& recording);
 
-/// Reads damping.csv.
+/// Reads damping.csv. points_used, frequencies_used_hz (';'-separated) and points_skipped are
+/// optional (older files, other tools): absent or empty, they read as 0, none, 0.
 std::vector<DampingRow> read_damping_csv(const std::filesystem::path& file);
 
 /// Reads a time history: header `time_s,<channel>,...`, numbers, uniform sampling (a step
@@ -48,10 +51,12 @@ void write_recording(const std::filesystem::path& directory, const Recording& re
 /// Writes recording.toml (info and channels, in order).
 void write_recording_toml(const std::filesystem::path& file, const Recording& recording);
 
-/// Writes points.csv (fixed columns, then C_rms, C_re, C_im per channel).
+/// Writes points.csv: fixed columns, then C_rms, C_re, C_im per channel, then C_h2, C_h3 per
+/// channel that has a finite harmonic ratio at any row (NaN as an empty cell).
 void write_points_csv(const std::filesystem::path& file, const Recording& recording);
 
-/// Writes damping.csv.
+/// Writes damping.csv: arrangement, level_g, natural_frequency_hz, damping_ratio, method,
+/// points_used, frequencies_used_hz (';'-separated), points_skipped.
 void write_damping_csv(const std::filesystem::path& file, const std::vector<DampingRow>& rows);
 
 /// Writes a time history CSV.

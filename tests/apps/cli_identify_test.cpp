@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <complex>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -35,8 +36,13 @@ id::Frf sdof(double fn_hz, double zeta, double a = 1.0) {
     return frf;
 }
 
-/// A recording directory: force reference, acceleration control, two levels of an SDOF.
-fs::path write_recording(const std::string& name, bool base = false) {
+/// Grid indices of sdof() either side of f_n: f_n(1 + ζ(−4 + 8(i + 0.3)/30)) = f_n at i = 14.7.
+constexpr std::size_t kNearResonance[] = {14, 15};
+
+/// A recording directory: force reference, acceleration control, two levels of an SDOF. With
+/// `closest`, the two points nearest the resonance at 1 g did not hold their level: response
+/// 30 % low, status closest.
+fs::path write_recording(const std::string& name, bool base = false, bool closest = false) {
     const auto dir = temp_dir(name);
     id::Recording rec;
     rec.info.name = name;
@@ -48,12 +54,14 @@ fs::path write_recording(const std::string& name, bool base = false) {
         const auto frf = sdof(6.4, zeta);
         for (std::size_t i = 0; i < frf.value.size(); ++i) {
             const std::complex<double> force(1.5, 0.5);
+            const bool bad =
+                closest && level == 1.0 && (i == kNearResonance[0] || i == kNearResonance[1]);
             rec.points.push_back({"H-0",
                                   level,
                                   frf.frequency_hz[i],
-                                  "converged",
+                                  bad ? "closest" : "converged",
                                   "",
-                                  {{1.0, force}, {1.0, frf.value[i] * force}}});
+                                  {{1.0, force}, {1.0, frf.value[i] * force * (bad ? 0.7 : 1.0)}}});
         }
     }
     id::write_recording(dir, rec);
@@ -99,6 +107,80 @@ TEST(CliIdentify, WritesIntoDirIdentifiedByDefaultAndPrintsTheLossFactor) {
         EXPECT_TRUE(fs::exists(dir / "identified" / "H-0-frf.svg")) << r.output;
         EXPECT_TRUE(fs::exists(dir / "identified" / "H-0-damping.svg")) << r.output;
     }
+}
+
+TEST(CliIdentify, LeavesClosestPointsOutByDefaultSaysSoAndWritesWhichPointsWereUsed) {
+    const auto dir = write_recording("identify-closest", false, true);
+    const auto r = run("identify " + dir.string() + " --no-plots");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const auto grid = sdof(6.4, 0.04).frequency_hz;
+    const double f1 = grid[kNearResonance[0]], f2 = grid[kNearResonance[1]];
+    char line[160];
+    std::snprintf(line, sizeof line,
+                  "H-0 1 g: 2 points with status closest left out of the fits (%.6g, %.6g Hz)", f1,
+                  f2);
+    EXPECT_NE(r.output.find(line), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("H-0 0.5 g: "), std::string::npos) << r.output;  // nothing left out
+    const auto csv = dir / "identified" / "damping.csv";
+    EXPECT_EQ(file_text(csv).substr(0, file_text(csv).find('\n')),
+              "arrangement,level_g,natural_frequency_hz,damping_ratio,method,points_used,"
+              "frequencies_used_hz,points_skipped");
+    const auto rows = id::read_damping_csv(csv);
+    ASSERT_EQ(rows.size(), 4u);  // 2 levels × half-power, circle-fit
+    for (const auto& row : rows) {
+        EXPECT_EQ(row.points_skipped, row.level_g == 1.0 ? 2 : 0);
+        EXPECT_EQ(row.frequencies_used_hz.size(), static_cast<std::size_t>(row.points_used));
+        EXPECT_GE(row.points_used, 3);
+        for (double f : row.frequencies_used_hz) {
+            if (row.level_g == 1.0) {
+                EXPECT_NE(f, f1);
+                EXPECT_NE(f, f2);
+            }
+        }
+        // The rest is exact SDOF data: every method within the bound.
+        EXPECT_NEAR(row.damping_ratio / (row.level_g == 1.0 ? 0.04 : 0.02), 1.0, kDampingTolerance);
+    }
+}
+
+TEST(CliIdentify, ClosestUseKeepsThePointsFlagsThemAndChangesTheResult) {
+    const auto dir = write_recording("identify-closest-use", false, true);
+    const auto skip =
+        run("identify " + dir.string() + " --no-plots --out " + (dir / "skip").string());
+    const auto use = run("identify " + dir.string() + " --no-plots --closest use --out " +
+                         (dir / "use").string());
+    ASSERT_EQ(skip.exit_code, 0) << skip.output;
+    ASSERT_EQ(use.exit_code, 0) << use.output;
+    EXPECT_NE(use.output.find("H-0 1 g: 2 points with status closest kept in the fits"),
+              std::string::npos)
+        << use.output;
+    EXPECT_EQ(use.output.find("left out"), std::string::npos) << use.output;
+    const auto kept = id::read_damping_csv(dir / "use" / "damping.csv");
+    const auto left_out = id::read_damping_csv(dir / "skip" / "damping.csv");
+    // The 30 % dip at the peak moves (or removes) the 1 g estimates; 0.5 g is unchanged.
+    int changed = 0;
+    for (const auto& a : left_out) {
+        bool found = false;
+        for (const auto& b : kept) {
+            if (b.level_g != a.level_g || b.method != a.method) continue;
+            found = true;
+            EXPECT_EQ(b.points_skipped, 0);
+            if (a.level_g == 0.5) {
+                EXPECT_EQ(b.damping_ratio, a.damping_ratio);
+            }
+            if (a.level_g == 1.0 && std::abs(b.damping_ratio / a.damping_ratio - 1.0) > 0.01)
+                ++changed;
+        }
+        if (!found && a.level_g == 1.0) ++changed;
+    }
+    EXPECT_EQ(changed, 2) << use.output;
+}
+
+TEST(CliIdentify, AnUnknownClosestPolicyExitsTwo) {
+    const auto dir = write_recording("identify-closest-maybe", false, true);
+    const auto r = run("identify " + dir.string() + " --closest maybe");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("--closest"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "identified" / "damping.csv"));
 }
 
 TEST(CliIdentify, RefusesToWriteIntoTheRecordingItself) {

@@ -449,12 +449,14 @@ TEST(Cli, IdentifyRecoversTheDampingOfAnSdofRecording) {
     std::ifstream csv(dir / "out" / "damping.csv");
     std::string line;
     std::getline(csv, line);
-    EXPECT_EQ(line, "arrangement,level_g,natural_frequency_hz,damping_ratio,method");
+    EXPECT_EQ(line.substr(0, line.find(",points_used")),
+              "arrangement,level_g,natural_frequency_hz,damping_ratio,method");
     int rows = 0;
     while (std::getline(csv, line)) {
-        const auto last = line.rfind(',');
-        const auto before = line.rfind(',', last - 1);
-        const double ratio = std::stod(line.substr(before + 1, last - before - 1));
+        // damping_ratio is the fourth cell.
+        std::size_t begin = 0;
+        for (int cell = 0; cell < 3; ++cell) begin = line.find(',', begin) + 1;
+        const double ratio = std::stod(line.substr(begin, line.find(',', begin) - begin));
         // Exact data (6 significant digits in the CSV): every method within 2 %.
         EXPECT_NEAR(ratio, zeta, 0.02 * zeta) << line;
         ++rows;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <vector>
 
 #include "core/units.hpp"
 #include "identification/csv_table.hpp"
@@ -70,6 +71,105 @@ TEST(DampingCurve, SpecificDampingCapacityAtThePeakPointIsFourPiZetaTimesFnOverF
         EXPECT_NEAR(l->specific_damping_capacity, expected, kExactTolerance * expected);
         EXPECT_NEAR(l->capacity_frequency_hz, 6.37, 6.37 * (zeta + 0.002) * 8.0 / 30.0);
     }
+}
+
+/// One level of an exact SDOF accelerance (f_n = 6.37 Hz, ζ = 0.03) on 31 points over ±4
+/// half-bandwidths, whose two points nearest the resonance did not hold their level: their
+/// response is 30 % low, and they say so with status `closest`.
+Recording sdof_with_closest_points(std::vector<double>& corrupted_hz) {
+    Recording rec;
+    rec.channels = {{"force", "force", "N", "shaker", ChannelRole::reference},
+                    {"acc", "acceleration", "m/s^2", "damper", ChannelRole::control}};
+    const auto frf = testing::modal_accelerance(testing::grid_around(6.37, 0.03, 31, 4.0, 0.2),
+                                                {{6.37, 0.03, 1.0}});
+    // The grid points either side of f_n: (f − f_lo)/step = 4ζ f_n/step − 0.2 = 14.8.
+    const std::size_t near[] = {14, 15};
+    corrupted_hz.clear();
+    for (std::size_t i = 0; i < frf.value.size(); ++i) {
+        const bool bad = i == near[0] || i == near[1];
+        const std::complex<double> force(2.0, 0.5);
+        rec.points.push_back({"H-0",
+                              2.0,
+                              frf.frequency_hz[i],
+                              bad ? "closest" : "converged",
+                              "",
+                              {{1.0, force}, {1.0, frf.value[i] * force * (bad ? 0.7 : 1.0)}}});
+        if (bad) corrupted_hz.push_back(frf.frequency_hz[i]);
+    }
+    return rec;
+}
+
+TEST(DampingCurve, ClosestPointsAreLeftOutOfEveryFitByDefaultAndReported) {
+    std::vector<double> corrupted;
+    const Recording rec = sdof_with_closest_points(corrupted);
+    const auto levels = identify_recording(rec);
+    ASSERT_EQ(levels.size(), 1u);
+    const auto& l = levels[0];
+    EXPECT_EQ(l.skipped_hz, corrupted);
+    EXPECT_TRUE(l.closest_used_hz.empty());
+    EXPECT_EQ(l.frf.frequency_hz.size(), rec.points.size() - corrupted.size());
+    for (const auto* e : {&l.half_power, &l.circle_fit, &l.rational_fraction}) {
+        ASSERT_TRUE(e->ok()) << e->message;
+        EXPECT_NEAR(e->damping_ratio, 0.03, kExactTolerance);
+        ASSERT_EQ(e->frequencies_used_hz.size(), static_cast<std::size_t>(e->points_used));
+        for (double f : e->frequencies_used_hz) {
+            // On the grid of the recording, and none of the left-out points.
+            bool on_grid = false;
+            for (const auto& p : rec.points) on_grid = on_grid || p.frequency_hz == f;
+            EXPECT_TRUE(on_grid) << f;
+            for (double bad : corrupted) EXPECT_NE(f, bad);
+        }
+        // The points around the resonance take part: some below and some above the gap.
+        EXPECT_LT(e->frequencies_used_hz.front(), corrupted.front());
+        EXPECT_GT(e->frequencies_used_hz.back(), corrupted.back());
+    }
+    const auto rows = damping_rows(levels, true);
+    ASSERT_EQ(rows.size(), 3u);
+    for (const auto& [row, e] :
+         {std::pair{&rows[0], &l.half_power}, std::pair{&rows[1], &l.circle_fit},
+          std::pair{&rows[2], &l.rational_fraction}}) {
+        EXPECT_EQ(row->points_skipped, 2);
+        EXPECT_EQ(row->points_used, e->points_used);
+        EXPECT_EQ(row->frequencies_used_hz, e->frequencies_used_hz);
+    }
+}
+
+TEST(DampingCurve, ClosestPointsKeptOnRequestChangeTheEstimateAndAreFlagged) {
+    std::vector<double> corrupted;
+    IdentifyOptions options;
+    options.closest = ClosestPolicy::use;
+    const auto levels = identify_recording(sdof_with_closest_points(corrupted), options);
+    ASSERT_EQ(levels.size(), 1u);
+    const auto& l = levels[0];
+    EXPECT_TRUE(l.skipped_hz.empty());
+    EXPECT_EQ(l.closest_used_hz, corrupted);
+    EXPECT_EQ(l.frf.frequency_hz.size(), 31u);
+    // A 30 % dip at the peak is far outside the exact estimators' tolerance: each method
+    // either refuses or returns a damping ratio at least 1 % off, and one at least returns a
+    // number (else the comparison would prove nothing).
+    int numbers = 0;
+    for (const auto* e : {&l.half_power, &l.circle_fit, &l.rational_fraction}) {
+        if (!e->ok()) continue;
+        ++numbers;
+        EXPECT_GT(std::abs(e->damping_ratio - 0.03), 0.01 * 0.03);
+    }
+    EXPECT_GT(numbers, 0);
+    for (const auto& row : damping_rows(levels, true)) EXPECT_EQ(row.points_skipped, 0);
+}
+
+TEST(DampingCurve, ALevelWhosePointsAreAllClosestKeepsItsPlaceAndRefusesEveryEstimate) {
+    std::vector<double> corrupted;
+    Recording rec = sdof_with_closest_points(corrupted);
+    for (auto& p : rec.points) p.status = "closest";
+    const auto levels = identify_recording(rec);
+    ASSERT_EQ(levels.size(), 1u);
+    EXPECT_EQ(levels[0].skipped_hz.size(), rec.points.size());
+    EXPECT_TRUE(levels[0].frf.value.empty());
+    for (const auto* e :
+         {&levels[0].half_power, &levels[0].circle_fit, &levels[0].rational_fraction}) {
+        EXPECT_EQ(e->status, EstimateStatus::too_few_points) << e->message;
+    }
+    EXPECT_TRUE(damping_rows(levels, true).empty());
 }
 
 TEST(Energy, SpecificDampingCapacityOfAnSdofAtResonanceIsFourPiZeta) {

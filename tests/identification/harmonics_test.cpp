@@ -63,6 +63,20 @@ TEST(Harmonics, UseTheLongestWholeNumberOfPeriodsWhenAPeriodIsNotAWholeNumberOfS
                  std::invalid_argument);
 }
 
+TEST(Harmonics, RatioToTheFundamentalIsUnknownAtOrAboveNyquistAndForAZeroFundamental) {
+    // 5 samples per period, 4 periods: bins 4 (k = 1) and 8 (k = 2) lie below Nyquist (bin 10),
+    // bin 12 (k = 3) above it.
+    const double fs = 50.0, f = 10.0;
+    const auto x = signal(fs, f, 20, {{0.0, 0.0}, {2.0, 0.0}, {0.0, -0.5}});
+    const auto a = analyse_harmonics(x, fs, f, 3);
+    EXPECT_NEAR(harmonic_ratio(a, 2), 0.25, kRoundOff);
+    EXPECT_TRUE(std::isnan(harmonic_ratio(a, 3)));
+    EXPECT_TRUE(std::isnan(harmonic_ratio(analyse_harmonics(x, fs, f, 1), 2)));
+    EXPECT_TRUE(
+        std::isnan(harmonic_ratio(analyse_harmonics(std::vector<double>(20, 1.0), fs, f), 2)));
+    EXPECT_THROW(harmonic_ratio(a, 0), std::invalid_argument);
+}
+
 TEST(H1Estimator, GivesTheExactRatioAndUnitCoherenceOnCleanData) {
     const double fs = 1024.0, f = 16.0;
     const auto force = signal(fs, f, 64 * 10, {{0.0, 0.0}, {2.0, 0.0}});

@@ -7,6 +7,9 @@
 #include <complex>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
 
 #include "core/units.hpp"
 #include "identification/file_error.hpp"
@@ -230,6 +233,192 @@ TEST(RecordingIo, UnknownKeyInRecordingTomlIsAnError) {
     const auto e = expect_error(make_dir("unknownkey", toml, kHeader));
     EXPECT_EQ(e.line(), 9);
     EXPECT_NE(e.message().find("unknown key 'channels.force.units'"), std::string::npos)
+        << e.what();
+}
+
+/// The first line of a file.
+std::string first_line(const fs::path& file) {
+    std::ifstream in(file);
+    std::string line;
+    std::getline(in, line);
+    return line;
+}
+
+/// Two channels, two points; acc_damper knows its harmonics (one of them not at row 0).
+Recording harmonic_recording() {
+    Recording rec;
+    rec.info.name = "harmonics";
+    rec.channels = {{"force", "force", "N", "shaker", ChannelRole::reference},
+                    {"acc_damper", "acceleration", "m/s^2", "damper", ChannelRole::control}};
+    for (int i = 0; i < 2; ++i) {
+        PointRow p{"H-0",       0.5, 6.3 + 0.1 * i,
+                   "converged", "",  {{1.0, {2.0, 0.5}}, {3.0, {0.1, 4.0}}}};
+        p.values[1].h2_ratio = i == 0 ? 1.0 / 3.0 : 0.1;
+        p.values[1].h3_ratio = i == 0 ? std::numeric_limits<double>::quiet_NaN() : 2.0 / 7.0;
+        rec.points.push_back(p);
+    }
+    return rec;
+}
+
+TEST(RecordingIo, HarmonicRatiosRoundTripExactlyInColumnsAfterEveryChannelsValues) {
+    const auto dir = fs::temp_directory_path() / "sb_identification_recording_test" / "harmonics";
+    fs::remove_all(dir);
+    const Recording rec = harmonic_recording();
+    write_recording(dir, rec);
+    // force has no ratio at any row: no columns for it; acc_damper's pair after all values.
+    EXPECT_EQ(first_line(dir / "points.csv"),
+              "arrangement,level_g,frequency_hz,status,series,force_rms,force_re,force_im,"
+              "acc_damper_rms,acc_damper_re,acc_damper_im,acc_damper_h2,acc_damper_h3");
+    const auto back = read_recording(dir);
+    ASSERT_EQ(back.points.size(), 2u);
+    for (std::size_t i = 0; i < 2; ++i) {
+        EXPECT_EQ(back.points[i].values[1].h2_ratio, rec.points[i].values[1].h2_ratio) << i;
+        EXPECT_TRUE(std::isnan(back.points[i].values[0].h2_ratio)) << i;
+        EXPECT_TRUE(std::isnan(back.points[i].values[0].h3_ratio)) << i;
+    }
+    EXPECT_TRUE(std::isnan(back.points[0].values[1].h3_ratio));
+    EXPECT_EQ(back.points[1].values[1].h3_ratio, 2.0 / 7.0);
+}
+
+TEST(RecordingIo, HarmonicColumnsAreOptionalOnReadButComeAsAPair) {
+    // Without the columns (another tool's file): not known.
+    auto rec = read_recording(
+        make_dir("no-harmonics", kToml,
+                 std::string(kHeader) + "H-0,0.5,6.3,converged,,1.2,1.5,0.1,4.9,0.3,6.9\n"));
+    EXPECT_TRUE(std::isnan(rec.points[0].values[1].h2_ratio));
+    EXPECT_TRUE(std::isnan(rec.points[0].values[1].h3_ratio));
+    // Present, one cell empty: that one is not known.
+    std::string header = kHeader;
+    header.insert(header.size() - 1, ",acc_damper_h2,acc_damper_h3");
+    rec =
+        read_recording(make_dir("empty-harmonic", kToml,
+                                header + "H-0,0.5,6.3,converged,,1.2,1.5,0.1,4.9,0.3,6.9,,0.02\n"));
+    EXPECT_TRUE(std::isnan(rec.points[0].values[1].h2_ratio));
+    EXPECT_EQ(rec.points[0].values[1].h3_ratio, 0.02);
+    // Only one of the pair: an error at the header line naming the missing one.
+    header = kHeader;
+    header.insert(header.size() - 1, ",acc_damper_h2");
+    const auto e = expect_error(make_dir(
+        "half-pair", kToml, header + "H-0,0.5,6.3,converged,,1.2,1.5,0.1,4.9,0.3,6.9,0.1\n"));
+    EXPECT_EQ(e.line(), 1);
+    EXPECT_NE(e.message().find("missing column 'acc_damper_h3'"), std::string::npos) << e.what();
+}
+
+TEST(RecordingIo, ABadHarmonicCellIsReportedAtFileLineAndColumn) {
+    std::string header = kHeader;
+    header.insert(header.size() - 1, ",acc_damper_h2,acc_damper_h3");
+    for (const std::string bad : {"abc", "nan", "-0.1"}) {
+        const std::string row = "H-0,0.5,6.3,converged,,1.2,1.5,0.1,4.9,0.3,6.9,0.1," + bad + "\n";
+        const auto e = expect_error(make_dir("bad-harmonic", kToml, header + row));
+        EXPECT_EQ(e.line(), 2) << bad;
+        EXPECT_EQ(e.column(), static_cast<int>(row.rfind(',')) + 2) << bad;
+        EXPECT_NE(e.message().find("column 'acc_damper_h3': '" + bad + "'"), std::string::npos)
+            << e.what();
+    }
+}
+
+TEST(RecordingIo, HarmonicRatiosComeFromTheSeriesWithTheFundamentalWhenItsCellsAreEmpty) {
+    // acc_damper = 3 sin ωt + 0.3 cos(2ωt + 1) + 0.15 sin(3ωt): H2/H1 = 0.1, H3/H1 = 0.05.
+    // force's cells are given, its harmonic cells too (a number in the file is kept).
+    const double f = 6.4;
+    const int per_period = 32, periods = 4;
+    const auto dir = make_dir("harmonics-from-series", kToml, "");
+    std::string header = kHeader;
+    header.insert(header.size() - 1, ",force_h2,force_h3,acc_damper_h2,acc_damper_h3");
+    std::ofstream(dir / "points.csv")
+        << header << "H-0,0.5,6.4,converged,series/a.csv,1.2,1.5,0.1,,,,0.5,,,\n";
+    fs::create_directories(dir / "series");
+    std::ofstream out(dir / "series" / "a.csv");
+    out.precision(17);
+    out << "time_s,force,acc_damper\n";
+    for (int k = 0; k < periods * per_period; ++k) {
+        const double t = k / (f * per_period);
+        const double w = kTwoPi * f;
+        out << t << ',' << std::cos(w * t) << ','
+            << 3.0 * std::sin(w * t) + 0.3 * std::cos(2.0 * w * t + 1.0) +
+                   0.15 * std::sin(3.0 * w * t)
+            << '\n';
+    }
+    out.close();
+    const auto rec = read_recording(dir);
+    const auto& acc = rec.points[0].values[1];
+    EXPECT_TRUE(acc.from_series);
+    EXPECT_NEAR(acc.h2_ratio, 0.1, 1e-12);
+    EXPECT_NEAR(acc.h3_ratio, 0.05, 1e-12);
+    EXPECT_NEAR(std::abs(acc.amplitude), 3.0, 1e-12);
+    const auto& force = rec.points[0].values[0];
+    EXPECT_FALSE(force.from_series);
+    EXPECT_EQ(force.h2_ratio, 0.5);
+    EXPECT_TRUE(std::isnan(force.h3_ratio));
+}
+
+TEST(RecordingIo, DampingCsvRoundTripsWhichPointsEachEstimateUsed) {
+    const auto file = fs::temp_directory_path() / "sb_identification_recording_test" / "d.csv";
+    fs::create_directories(file.parent_path());
+    std::vector<DampingRow> rows = {
+        {"H-0", 2.0, 6.35, 0.0123456789012345, "half-power", 3, {6.3, 6.35 + 1.0 / 3.0, 6.7}, 2},
+        {"H-0", 2.0, 6.36, 0.0125, "circle-fit", 0, {}, 0}};
+    write_damping_csv(file, rows);
+    EXPECT_EQ(first_line(file),
+              "arrangement,level_g,natural_frequency_hz,damping_ratio,method,points_used,"
+              "frequencies_used_hz,points_skipped");
+    const auto back = read_damping_csv(file);
+    ASSERT_EQ(back.size(), 2u);
+    for (std::size_t i = 0; i < 2; ++i) {
+        EXPECT_EQ(back[i].damping_ratio, rows[i].damping_ratio) << i;
+        EXPECT_EQ(back[i].method, rows[i].method) << i;
+        EXPECT_EQ(back[i].points_used, rows[i].points_used) << i;
+        EXPECT_EQ(back[i].frequencies_used_hz, rows[i].frequencies_used_hz) << i;
+        EXPECT_EQ(back[i].points_skipped, rows[i].points_skipped) << i;
+    }
+}
+
+TEST(RecordingIo, DampingCsvWithoutTheNewColumnsStillReads) {
+    const auto file = fs::temp_directory_path() / "sb_identification_recording_test" / "old.csv";
+    fs::create_directories(file.parent_path());
+    std::ofstream(file) << "arrangement,level_g,natural_frequency_hz,damping_ratio,method\n"
+                           "H-0,0.5,6.3,0.05,half-power\n";
+    const auto rows = read_damping_csv(file);
+    ASSERT_EQ(rows.size(), 1u);
+    EXPECT_EQ(rows[0].damping_ratio, 0.05);
+    EXPECT_EQ(rows[0].points_used, 0);
+    EXPECT_TRUE(rows[0].frequencies_used_hz.empty());
+    EXPECT_EQ(rows[0].points_skipped, 0);
+}
+
+TEST(RecordingIo, DampingCsvBadUsedPointsAreReportedAtTheirCell) {
+    const auto file = fs::temp_directory_path() / "sb_identification_recording_test" / "bad.csv";
+    fs::create_directories(file.parent_path());
+    const std::string header =
+        "arrangement,level_g,natural_frequency_hz,damping_ratio,method,points_used,"
+        "frequencies_used_hz,points_skipped\n";
+    const auto error = [&](const std::string& row) {
+        std::ofstream(file) << header << row;
+        try {
+            read_damping_csv(file);
+        } catch (const FileError& e) {
+            return e;
+        }
+        ADD_FAILURE() << "no FileError for " << row;
+        return FileError("", 0, 0, "");
+    };
+    // A frequency that is not a number: at its own position within the cell.
+    std::string row = "H-0,0.5,6.3,0.05,half-power,3,6.2;x6.3;6.4,0\n";
+    auto e = error(row);
+    EXPECT_EQ(e.line(), 2);
+    EXPECT_EQ(e.column(), static_cast<int>(row.find("x6.3")) + 1);
+    EXPECT_NE(e.message().find("'x6.3' is not a number"), std::string::npos) << e.what();
+    // The count contradicts the list.
+    row = "H-0,0.5,6.3,0.05,half-power,4,6.2;6.3;6.4,0\n";
+    e = error(row);
+    EXPECT_EQ(e.column(), static_cast<int>(row.find("6.2;")) + 1);
+    EXPECT_NE(e.message().find("lists 3 frequencies but points_used is 4"), std::string::npos)
+        << e.what();
+    // A count that is not a count.
+    row = "H-0,0.5,6.3,0.05,half-power,3,6.2;6.3;6.4,-1\n";
+    e = error(row);
+    EXPECT_EQ(e.column(), static_cast<int>(row.rfind(',')) + 2);
+    EXPECT_NE(e.message().find("column 'points_skipped': '-1' is not a count"), std::string::npos)
         << e.what();
 }
 
