@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <iomanip>
 #include <optional>
@@ -458,6 +459,54 @@ std::string describe(const AutoStiffness& a, NormalLaw law) {
         << " m), contact time particle-particle " << a.pair_contact_time_s << " s, particle-wall "
         << a.wall_contact_time_s << " s, time step " << a.time_step_s << " s";
     return out.str();
+}
+
+namespace {
+/// Nine significant digits for the run log.
+std::string number_text(double v) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.9g", v);
+    return buffer;
+}
+}  // namespace
+
+ExcitationContact choose_contact(const ParticleOptions& particles,
+                                 const EnclosureOptions& enclosure, NormalLaw law,
+                                 double restitution, std::optional<double> given_stiffness,
+                                 double max_overlap_fraction, double time_step_fraction,
+                                 double peak_acceleration_m_s2, double frequency_hz) {
+    // The largest spheres overlap most at a given speed (auto_stiffness) and have the longest
+    // contact; the time step follows from the contact of two of them.
+    const double d = particles.largest_diameter_m();
+    const double mass = particles.material.density_kg_m3 * kPi * d * d * d / 6.0;
+    AutoStiffnessInput in;
+    in.law = law;
+    in.particle_diameter_m = d;
+    in.density_kg_m3 = particles.material.density_kg_m3;
+    in.max_overlap_fraction = max_overlap_fraction;
+    in.level_m_s2 = peak_acceleration_m_s2;
+    in.frequency_hz = frequency_hz;
+    in.gap_m = enclosure.height_m;
+    in.restitution = restitution;
+    in.time_step_fraction = time_step_fraction;
+    ExcitationContact out;
+    if (!given_stiffness) {
+        const AutoStiffness chosen = auto_stiffness(in);
+        out.stiffness = chosen.stiffness;
+        out.time_step_s = chosen.time_step_s;
+        out.log = "automatic: " + describe(chosen, law);
+    } else {
+        out.stiffness = *given_stiffness;
+        const double contact_time = law == NormalLaw::hooke
+                                        ? hooke_contact_time(0.5 * mass, out.stiffness, restitution)
+                                        : hertz_contact_time(0.5 * mass, out.stiffness,
+                                                             auto_stiffness(in).impact_speed_m_s);
+        out.time_step_s = time_step_fraction * contact_time;
+        out.log = "stiffness " + number_text(out.stiffness) + " (given), contact time " +
+                  number_text(contact_time) + " s, time step " + number_text(out.time_step_s) +
+                  " s";
+    }
+    return out;
 }
 
 }  // namespace sb::dem

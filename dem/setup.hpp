@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "dem/solver.hpp"
@@ -135,5 +136,25 @@ std::string describe(const AutoStiffness& chosen, NormalLaw law);
 double hertz_contact_time(double m_eff, double k, double v);
 /// Linear spring-dashpot contact duration pi / sqrt(k/m* - (c/2m*)^2) [s].
 double hooke_contact_time(double m_eff, double k, double restitution);
+
+/// The contact stiffness and time step for an excitation of one level and frequency (a
+/// stepped-sine sweep), and the line that says so in the run log.
+struct ExcitationContact {
+    double stiffness = 0.0;    ///< Hooke [N/m] or Hertz [N/m^1.5]
+    double time_step_s = 0.0;  ///< DEM time step [s]
+    std::string log;
+};
+
+/// The given stiffness, or auto_stiffness() sized for the largest spheres at the largest
+/// impact speed of the excitation (peak acceleration a, frequency f, free flight across the
+/// enclosure height); the time step is time_step_fraction times the particle-particle contact
+/// time of the largest spheres (m* = m/2): Hooke damped with `restitution`, Hertz at the
+/// impact speed auto_stiffness() estimates. Throws std::invalid_argument (auto_stiffness()'s
+/// checks) for inputs it cannot size.
+ExcitationContact choose_contact(const ParticleOptions& particles,
+                                 const EnclosureOptions& enclosure, NormalLaw law,
+                                 double restitution, std::optional<double> given_stiffness,
+                                 double max_overlap_fraction, double time_step_fraction,
+                                 double peak_acceleration_m_s2, double frequency_hz);
 
 }  // namespace sb::dem

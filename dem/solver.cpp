@@ -64,6 +64,16 @@ SimulationError::SimulationError(Kind k, std::int64_t s, double t, int id, const
 
 Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
                const EnclosureState& enclosure)
+    : Solver(options, particles, enclosure, true) {}
+
+Solver::Solver(const SolverOptions& options, const SolverState& state,
+               const EnclosureState& enclosure)
+    : Solver(options, local_particles(state), enclosure, false) {
+    restore(state);
+}
+
+Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
+               const EnclosureState& enclosure, bool lock_from_options)
     : options_(options), enclosure_(options.enclosure), enclosure_state_(enclosure) {
     // SolverOptions::validate() checks the contact options too: each violation once.
     Violations v = options_.validate();
@@ -80,8 +90,9 @@ Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
                      "initial enclosure pose and velocity"});
     }
     if (!v.empty()) throw std::invalid_argument(join(v));
-    layers_ = HorizontalLayers::for_gravity(enclosure_, enclosure, options_.gravity_m_s2,
-                                            options_.energy_layers);
+    // HorizontalLayers::for_gravity, with its input kept for SolverState::layers_up
+    layers_up_ = enclosure.rotation.transpose() * (-options_.gravity_m_s2);
+    layers_ = HorizontalLayers(enclosure_, layers_up_, options_.energy_layers);
 
     // Pair coefficients: [0] particle-particle, [1] particle-wall.
     const auto& c = options_.contact;
@@ -209,9 +220,9 @@ Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
     cell_start_.assign(static_cast<std::size_t>(dims_[0]) * dims_[1] * dims_[2] + 1, 0);
     cell_items_.resize(n);
 
-    // Locking.
-    std::vector<int> ids = options_.lock.particle_ids;
-    if (ids.empty() && options_.lock.fraction > 0.0) {
+    // Locking (a restored solver takes the lock from its state).
+    std::vector<int> ids = lock_from_options ? options_.lock.particle_ids : std::vector<int>{};
+    if (lock_from_options && ids.empty() && options_.lock.fraction > 0.0) {
         std::vector<int> order(n);
         std::iota(order.begin(), order.end(), 0);
         std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
@@ -240,6 +251,7 @@ void Solver::set_enclosure_state(const EnclosureState& state) {
 }
 
 void Solver::lock(const std::vector<int>& ids) {
+    if (!ids.empty()) released_ = false;
     for (int id : ids) {
         const auto i = static_cast<std::size_t>(id);
         state_.locked[i] = 1;
@@ -249,6 +261,7 @@ void Solver::lock(const std::vector<int>& ids) {
 }
 
 void Solver::release() {
+    if (locked_count_ > 0) released_ = true;
     std::fill(state_.locked.begin(), state_.locked.end(), 0);
     locked_count_ = 0;
 }
@@ -703,6 +716,7 @@ void Solver::step(double dt) {
             sweep(law, dt);
         },
         law_.normal, law_.damping, law_.tangential, law_.rolling);
+    stepped_ = true;
     if (track_energy_) account_energy(dt);
     time_ += dt;
     ++step_;
@@ -784,7 +798,7 @@ EnergyLedger Solver::energy() const {
     auto spring = [hertz](double kl, double d) {
         return hertz ? Hertz::energy(kl, d) : Hooke::energy(kl, d);
     };
-    if (step_ > 0) {
+    if (stepped_) {
         for (std::size_t i = 0; i < state_.size(); ++i) {
             for (std::uint32_t q = nbr_begin_[i]; q < nbr_begin_[i + 1]; ++q) {
                 if (pair_active_[q] == PairFlag::touching)
@@ -805,17 +819,211 @@ void Solver::reset_energy() {
     ledger_.initial_total = energy().mechanical();
 }
 
-ParticleSet Solver::local_snapshot() const {
+namespace {
+
+/// The enclosure-frame particles of world-frame arrays at pose e (the one formula of
+/// local_snapshot() and local_particles()).
+ParticleSet to_enclosure_frame(const EnclosureState& e, const std::vector<Eigen::Vector3d>& x,
+                               const std::vector<Eigen::Vector3d>& v,
+                               const std::vector<Eigen::Vector3d>& w,
+                               const std::vector<double>& radius) {
     ParticleSet s;
-    const auto& e = enclosure_state_;
-    for (std::size_t i = 0; i < state_.size(); ++i) {
-        s.positions_m.push_back(e.to_local(state_.x[i]));
-        s.radii_m.push_back(state_.radius[i]);
-        s.velocities_m_s.push_back(e.rotation.transpose() *
-                                   (state_.v[i] - e.velocity_at(state_.x[i])));
-        s.angular_velocities_rad_s.push_back(e.rotation.transpose() * state_.w[i]);
+    const std::size_t n = x.size();
+    s.positions_m.reserve(n);
+    s.velocities_m_s.reserve(n);
+    s.angular_velocities_rad_s.reserve(n);
+    s.radii_m = radius;
+    for (std::size_t i = 0; i < n; ++i) {
+        s.positions_m.push_back(e.to_local(x[i]));
+        s.velocities_m_s.push_back(e.rotation.transpose() * (v[i] - e.velocity_at(x[i])));
+        s.angular_velocities_rad_s.push_back(e.rotation.transpose() * w[i]);
     }
     return s;
+}
+
+}  // namespace
+
+ParticleSet Solver::local_snapshot() const {
+    return to_enclosure_frame(enclosure_state_, state_.x, state_.v, state_.w, state_.radius);
+}
+
+ParticleSet local_particles(const SolverState& state) {
+    const std::size_t n = state.positions_m.size();
+    if (state.velocities_m_s.size() != n || state.angular_velocities_rad_s.size() != n ||
+        state.radii_m.size() != n) {
+        throw std::invalid_argument("solver state: " + std::to_string(n) + " positions but " +
+                                    std::to_string(state.velocities_m_s.size()) + " velocities, " +
+                                    std::to_string(state.angular_velocities_rad_s.size()) +
+                                    " angular velocities and " +
+                                    std::to_string(state.radii_m.size()) + " radii");
+    }
+    return to_enclosure_frame(state.enclosure, state.positions_m, state.velocities_m_s,
+                              state.angular_velocities_rad_s, state.radii_m);
+}
+
+SolverState Solver::state() const {
+    SolverState s;
+    s.enclosure = enclosure_state_;
+    s.positions_m = state_.x;
+    s.velocities_m_s = state_.v;
+    s.angular_velocities_rad_s = state_.w;
+    s.radii_m = state_.radius;
+    const std::size_t n = state_.size();
+    // The springs of the last step's contacts (touching pairs, in slot order = sorted by j;
+    // walls in emission order = ascending id): the next step continues exactly these.
+    if (has_history_) {
+        if (!nbr_begin_.empty()) {
+            for (std::size_t i = 0; i < n; ++i) {
+                for (std::uint32_t q = nbr_begin_[i]; q < nbr_begin_[i + 1]; ++q) {
+                    if (pair_active_[q] == PairFlag::touching) {
+                        s.pair_histories.push_back(
+                            {static_cast<std::uint32_t>(i), nbr_list_[q], pair_hist_[q]});
+                    }
+                }
+            }
+        }
+        for (std::size_t i = 0; i < n; ++i) {
+            for (std::uint32_t k = 0; k < wall_count_[i]; ++k) {
+                const std::size_t slot = i * wall_cap_ + k;
+                s.wall_histories.push_back(
+                    {static_cast<std::uint32_t>(i), wall_id_[slot], wall_hist_[slot]});
+            }
+        }
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        if (state_.locked[i]) s.locked.push_back({static_cast<std::uint32_t>(i), lock_local_[i]});
+    }
+    s.released = released_;
+    s.time_s = time_;
+    s.step = step_;
+    s.layers_up = layers_up_;
+    return s;
+}
+
+void Solver::restore(const SolverState& s) {
+    const std::size_t n = state_.size();
+    std::vector<std::string> errors;
+    auto finite = [](const Eigen::Vector3d& v) { return v.allFinite(); };
+    if (!s.enclosure.finite()) errors.push_back("enclosure: not finite");
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!finite(s.positions_m[i]) || !finite(s.velocities_m_s[i]) ||
+            !finite(s.angular_velocities_rad_s[i])) {
+            errors.push_back("particle " + std::to_string(i) + ": not finite");
+            break;
+        }
+    }
+    if (!(std::isfinite(s.time_s) && s.time_s >= 0.0)) {
+        errors.push_back("time_s = " + format_value(s.time_s) + ": must be finite and >= 0");
+    }
+    if (s.step < 0) errors.push_back("step = " + std::to_string(s.step) + ": must be >= 0");
+    if (!finite(s.layers_up)) errors.push_back("layers_up: not finite");
+    // The springs sorted as the solver keeps them (pairs by i then j, walls by particle then
+    // id), each contact once.
+    std::vector<PairHistory> pairs = s.pair_histories;
+    std::vector<WallHistory> walls = s.wall_histories;
+    std::sort(pairs.begin(), pairs.end(), [](const PairHistory& a, const PairHistory& b) {
+        return a.i != b.i ? a.i < b.i : a.j < b.j;
+    });
+    std::sort(walls.begin(), walls.end(), [](const WallHistory& a, const WallHistory& b) {
+        return a.particle != b.particle ? a.particle < b.particle : a.wall < b.wall;
+    });
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+        const PairHistory& p = pairs[k];
+        const std::string name =
+            "pair history (" + std::to_string(p.i) + ", " + std::to_string(p.j) + ")";
+        if (!(p.i < p.j && p.j < n))
+            errors.push_back(name + ": needs i < j < " + std::to_string(n));
+        if (k > 0 && pairs[k - 1].i == p.i && pairs[k - 1].j == p.j) {
+            errors.push_back(name + ": given twice");
+        }
+        if (!finite(p.history_m)) errors.push_back(name + ": not finite");
+    }
+    for (std::size_t k = 0, run = 0; k < walls.size(); ++k) {
+        const WallHistory& w = walls[k];
+        const std::string name = "wall history (particle " + std::to_string(w.particle) +
+                                 ", wall " + std::to_string(w.wall) + ")";
+        if (w.particle >= n) errors.push_back(name + ": no such particle");
+        const bool same_particle = k > 0 && walls[k - 1].particle == w.particle;
+        if (same_particle && walls[k - 1].wall == w.wall) errors.push_back(name + ": given twice");
+        run = same_particle ? run + 1 : 1;
+        if (run == wall_cap_ + 1) {
+            errors.push_back(name + ": more than " + std::to_string(wall_cap_) +
+                             " walls for one particle");
+        }
+        if (!finite(w.history_m)) errors.push_back(name + ": not finite");
+    }
+    std::vector<std::uint8_t> seen(n, 0);
+    for (const LockedParticle& l : s.locked) {
+        const std::string name = "locked particle " + std::to_string(l.id);
+        if (l.id >= n) {
+            errors.push_back(name + ": no such particle");
+            continue;
+        }
+        if (seen[l.id]++ > 0) errors.push_back(name + ": given twice");
+        if (!finite(l.position_m)) errors.push_back(name + ": not finite");
+    }
+    if (s.released && !s.locked.empty()) {
+        errors.push_back("released, yet " + std::to_string(s.locked.size()) +
+                         " particles are locked");
+    }
+    if (!errors.empty()) {
+        std::ostringstream msg;
+        msg << "invalid solver state:";
+        for (const auto& e : errors) msg << "\n  " << e;
+        throw std::invalid_argument(msg.str());
+    }
+
+    // At the state's own pose the world values are taken as they are (bitwise); elsewhere the
+    // delegated constructor has placed the particles from local_particles(s), and the springs
+    // turn with the enclosure: xi_new = R_new R_old^T xi.
+    const EnclosureState& e0 = s.enclosure;
+    const EnclosureState& e1 = enclosure_state_;
+    const bool same_rotation = e0.rotation == e1.rotation;
+    const bool same_place = same_rotation && e0.position_m == e1.position_m;
+    const bool same_motion = same_place && e0.velocity_m_s == e1.velocity_m_s &&
+                             e0.angular_velocity_rad_s == e1.angular_velocity_rad_s;
+    if (same_place) state_.x = s.positions_m;
+    if (same_motion) state_.v = s.velocities_m_s;
+    if (same_rotation) state_.w = s.angular_velocities_rad_s;
+    auto turned = [&](const Eigen::Vector3d& xi) -> Eigen::Vector3d {
+        return same_rotation ? xi : e1.rotate(e0.rotation.transpose() * xi);
+    };
+
+    // Springs: the touching pairs become the current Verlet list (only they), which the first
+    // step's neighbour build carries into its list like any previous one; the wall contacts
+    // fill the current wall slots, which the first sweep reads as the previous step's.
+    if (has_history_) {
+        nbr_begin_.assign(n + 1, 0);
+        nbr_list_.clear();
+        pair_hist_.clear();
+        for (const PairHistory& p : pairs) {
+            ++nbr_begin_[p.i + 1];
+            nbr_list_.push_back(p.j);
+            pair_hist_.push_back(turned(p.history_m));
+        }
+        for (std::size_t i = 0; i < n; ++i) nbr_begin_[i + 1] += nbr_begin_[i];
+        pair_active_.assign(pairs.size(), PairFlag::touching);
+        std::fill(wall_count_.begin(), wall_count_.end(), 0u);
+        for (const WallHistory& w : walls) {
+            const std::size_t slot = w.particle * wall_cap_ + wall_count_[w.particle]++;
+            wall_id_[slot] = w.wall;
+            wall_hist_[slot] = turned(w.history_m);
+        }
+    }
+    std::fill(state_.locked.begin(), state_.locked.end(), 0);
+    for (const LockedParticle& l : s.locked) {
+        state_.locked[l.id] = 1;
+        lock_local_[l.id] = l.position_m;
+    }
+    locked_count_ = static_cast<int>(s.locked.size());
+    released_ = s.released;
+    time_ = s.time_s;
+    step_ = s.step;
+    if (s.layers_up != Eigen::Vector3d::Zero()) {
+        layers_up_ = s.layers_up;
+        layers_ = HorizontalLayers(enclosure_, layers_up_, options_.energy_layers);
+    }
+    reset_energy();
 }
 
 }  // namespace sb::dem

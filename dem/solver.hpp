@@ -11,6 +11,7 @@
 #include "dem/contact_law.hpp"
 #include "dem/enclosure.hpp"
 #include "dem/options.hpp"
+#include "dem/solver_state.hpp"
 
 namespace sb::dem {
 
@@ -33,6 +34,11 @@ struct ParticleSet {
     std::vector<Eigen::Vector3d> velocities_m_s{};  ///< relative to the enclosure (optional)
     std::vector<Eigen::Vector3d> angular_velocities_rad_s{};  ///< (optional)
 };
+
+/// The particles of a SolverState in the enclosure frame of state.enclosure, as
+/// Solver::local_snapshot() gives them (spins in enclosure axes, not relative to the
+/// enclosure). Throws std::invalid_argument if the arrays differ in length.
+ParticleSet local_particles(const SolverState& state);
 
 /// Struct-of-arrays particle state, world frame.
 struct ParticleState {
@@ -77,6 +83,16 @@ class Solver {
     /// Throws std::invalid_argument listing every violation of options.validate().
     Solver(const SolverOptions& options, const ParticleSet& particles,
            const EnclosureState& enclosure = {});
+    /// Continues a saved state with the enclosure at `enclosure`. At state.enclosure (bitwise
+    /// the same pose and velocity) the run continues bitwise identically to the solver the
+    /// state was taken from, whenever its neighbour list was built. At another pose the bed
+    /// moves rigidly with the enclosure: the particles as Solver(options,
+    /// local_particles(state), enclosure) places them, the springs turned by R_new R_old^T.
+    /// The lock comes from the state (options.lock only gives the release time), the clock
+    /// continues from state.time_s; the springs are used by coulomb_spring only. The energy
+    /// ledger starts afresh, as after construction, and wall_force() reads 0 until a step.
+    /// Throws std::invalid_argument for options or a state that do not fit together.
+    Solver(const SolverOptions& options, const SolverState& state, const EnclosureState& enclosure);
 
     /// Pose and velocity of the enclosure at the start of the next step.
     void set_enclosure_state(const EnclosureState& state);
@@ -98,6 +114,8 @@ class Solver {
     const ParticleState& particles() const { return state_; }
     /// Positions and velocities in the enclosure frame (for saving a settled state).
     ParticleSet local_snapshot() const;
+    /// Everything needed to continue this run exactly (see SolverState).
+    SolverState state() const;
     double time() const { return time_; }
     std::int64_t step_count() const { return step_; }
     /// Contacts (pairs and walls) of the last step.
@@ -117,11 +135,18 @@ class Solver {
     void lock(const std::vector<int>& ids);
     void release();
     int locked_count() const;
+    /// True once locked particles were freed (and none locked since).
+    bool released() const { return released_; }
 
     /// Most threads one solver uses (options.threads above this are capped).
     static constexpr std::size_t kMaxChunks = 64;
 
   private:
+    Solver(const SolverOptions& options, const ParticleSet& particles,
+           const EnclosureState& enclosure, bool lock_from_options);
+    /// The state's springs, lock, clock and exact world values (constructor from a state).
+    void restore(const SolverState& state);
+
     /// What pair slot q of i's Verlet list hands to its partner j.
     struct PairShare {
         Eigen::Vector3d f{0, 0, 0};   ///< force on i (j receives -f) [N]
@@ -171,12 +196,15 @@ class Solver {
     PairCoefficients coeff_[2];
     EnclosureState enclosure_state_;
     HorizontalLayers layers_;
+    Eigen::Vector3d layers_up_ = Eigen::Vector3d::Zero();  ///< what layers_ was built from
     ParticleState state_;
     std::vector<Eigen::Vector3d> local_x_, lock_local_;
     std::vector<double> hertz_r_side_, hertz_r_rod_;  ///< Hertz R* on cylinder side, rods [m]
     double time_ = 0.0;
     std::int64_t step_ = 0;
     bool has_history_ = false;
+    bool stepped_ = false;  ///< the contact arrays hold a step's contacts
+    bool released_ = false;
     int locked_count_ = 0;
     std::size_t contact_count_ = 0;
 

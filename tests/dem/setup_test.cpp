@@ -399,5 +399,110 @@ TEST(AutoStiffness, RejectsMissingSpeedInputs) {
     EXPECT_THROW(auto_stiffness(in), std::invalid_argument);
 }
 
+/// Two size classes (2 and 4 mm steel) in a 25 mm high cavity, excited at 2 g RMS, 120 Hz.
+struct ExcitationCase {
+    ParticleOptions particles;
+    EnclosureOptions enclosure;
+    double peak_m_s2 = std::sqrt(2.0) * 2.0 * kStandardGravity;
+    double frequency_hz = 120.0;
+    double overlap = 0.01;
+    double fraction = 1.0 / 25.0;
+    ExcitationCase() {
+        particles.count = 40;
+        particles.size_distribution = {{2e-3, 0.5}, {4e-3, 0.5}};
+        enclosure.height_m = 25e-3;
+    }
+    /// auto_stiffness() sized for the largest spheres at this excitation.
+    AutoStiffnessInput input(NormalLaw law, double restitution) const {
+        AutoStiffnessInput in;
+        in.law = law;
+        in.particle_diameter_m = 4e-3;
+        in.density_kg_m3 = particles.material.density_kg_m3;
+        in.max_overlap_fraction = overlap;
+        in.level_m_s2 = peak_m_s2;
+        in.frequency_hz = frequency_hz;
+        in.gap_m = enclosure.height_m;
+        in.restitution = restitution;
+        in.time_step_fraction = fraction;
+        return in;
+    }
+    ExcitationContact choose(NormalLaw law, double restitution, std::optional<double> given) const {
+        return choose_contact(particles, enclosure, law, restitution, given, overlap, fraction,
+                              peak_m_s2, frequency_hz);
+    }
+    double largest_mass_kg() const {
+        return particles.material.density_kg_m3 * kPi * std::pow(4e-3, 3) / 6.0;
+    }
+    /// a / (2 pi f) + sqrt(2 (a + g) gap): the largest impact speed of the excitation.
+    double impact_speed_m_s() const {
+        return peak_m_s2 / (kTwoPi * frequency_hz) +
+               std::sqrt(2.0 * (peak_m_s2 + kStandardGravity) * enclosure.height_m);
+    }
+};
+
+std::string nine_digits(double v) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.9g", v);
+    return buffer;
+}
+
+TEST(ChooseContact, AutomaticStiffnessIsSizedForTheLargestSpheresAtTheExcitation) {
+    const ExcitationCase c;
+    for (const NormalLaw law : {NormalLaw::hooke, NormalLaw::hertz}) {
+        SCOPED_TRACE(law == NormalLaw::hooke ? "hooke" : "hertz");
+        const ExcitationContact chosen = c.choose(law, 0.8, std::nullopt);
+        const AutoStiffness expected = auto_stiffness(c.input(law, 0.8));
+        EXPECT_EQ(chosen.stiffness, expected.stiffness);
+        EXPECT_EQ(chosen.time_step_s, expected.time_step_s);
+        EXPECT_EQ(chosen.log, "automatic: " + describe(expected, law));
+        // 1/2 m v^2 = 1/2 k delta^2 (Hooke) or 2/5 k delta^{5/2} (Hertz) at delta = 1% of the
+        // largest diameter, for a wall impact of the largest sphere (m* = m)
+        const double m = c.largest_mass_kg(), v = c.impact_speed_m_s(), d = c.overlap * 4e-3;
+        const double energy = 0.5 * m * v * v;
+        const double stored = law == NormalLaw::hooke ? 0.5 * chosen.stiffness * d * d
+                                                      : 0.4 * chosen.stiffness * std::pow(d, 2.5);
+        EXPECT_NEAR(stored, energy, 1e-9 * energy);
+    }
+}
+
+TEST(ChooseContact, GivenHookeStiffnessStepsAFractionOfThePairContactTime) {
+    const ExcitationCase c;
+    const double k = 3e4, m_pair = 0.5 * c.largest_mass_kg();
+    const ExcitationContact damped = c.choose(NormalLaw::hooke, 0.8, k);
+    EXPECT_EQ(damped.stiffness, k);
+    const double t_c = hooke_contact_time(m_pair, k, 0.8);
+    EXPECT_DOUBLE_EQ(damped.time_step_s, c.fraction * t_c);
+    EXPECT_EQ(damped.log, "stiffness " + nine_digits(k) + " (given), contact time " +
+                              nine_digits(t_c) + " s, time step " +
+                              nine_digits(damped.time_step_s) + " s");
+    // undamped: half the period of the pair oscillator, pi sqrt(m*/k)
+    const ExcitationContact elastic = c.choose(NormalLaw::hooke, 1.0, k);
+    EXPECT_NEAR(elastic.time_step_s, c.fraction * kPi * std::sqrt(m_pair / k),
+                1e-12 * elastic.time_step_s);
+    EXPECT_GT(damped.time_step_s, elastic.time_step_s);  // the dashpot softens the contact
+}
+
+TEST(ChooseContact, GivenHertzStiffnessStepsAFractionOfThePairContactTimeAtTheImpactSpeed) {
+    const ExcitationCase c;
+    const double k = 8e9, m_pair = 0.5 * c.largest_mass_kg(), v = c.impact_speed_m_s();
+    const ExcitationContact chosen = c.choose(NormalLaw::hertz, 0.8, k);
+    EXPECT_EQ(chosen.stiffness, k);
+    // 2.94328 (5 m* / (4 k))^{2/5} v^{-1/5} (Johnson, Contact Mechanics, 11.2; the constant to
+    // six digits)
+    EXPECT_NEAR(chosen.time_step_s,
+                c.fraction * 2.94328 * std::pow(1.25 * m_pair / k, 0.4) / std::pow(v, 0.2),
+                1e-5 * chosen.time_step_s);
+    EXPECT_DOUBLE_EQ(chosen.time_step_s, c.fraction * hertz_contact_time(m_pair, k, v));
+    EXPECT_EQ(chosen.log.rfind("stiffness " + nine_digits(k) + " (given), contact time ", 0), 0u)
+        << chosen.log;
+}
+
+TEST(ChooseContact, AutomaticStiffnessNeedsAnExcitation) {
+    ExcitationCase c;
+    c.peak_m_s2 = 0.0;
+    EXPECT_THROW(c.choose(NormalLaw::hooke, 0.8, std::nullopt), std::invalid_argument);
+    EXPECT_NO_THROW(c.choose(NormalLaw::hooke, 0.8, 3e4));  // a given Hooke k needs none
+}
+
 }  // namespace
 }  // namespace sb::dem

@@ -164,30 +164,6 @@ TEST(Solver, ImpulseExchangedWithTheWallsEqualsMomentumChange) {
     EXPECT_GT(impulse.norm(), 0.0);
 }
 
-/// Simple cubic lattice of 2 mm spheres pressed 2 um into each other and into the walls and
-/// the floor, jittered by up to 0.5 um: every particle starts with several contacts.
-ParticleSet pressed_lattice(int per_side, double spacing) {
-    ParticleSet p;
-    const double r = 1e-3;
-    const double x0 = -0.5 * (per_side - 1) * spacing;
-    for (int iz = 0; iz < per_side; ++iz) {
-        for (int iy = 0; iy < per_side; ++iy) {
-            for (int ix = 0; ix < per_side; ++ix) {
-                const int id = (iz * per_side + iy) * per_side + ix;
-                auto jitter = [id](int axis) {  // deterministic, in [-0.5, 0.5] um
-                    return 1e-6 *
-                           (static_cast<double>((id * 7919 + axis * 104729) % 1001) / 1000.0 - 0.5);
-                };
-                p.positions_m.emplace_back(x0 + ix * spacing + jitter(0),
-                                           x0 + iy * spacing + jitter(1),
-                                           r - 2e-6 + iz * spacing + jitter(2));
-                p.radii_m.push_back(r);
-            }
-        }
-    }
-    return p;
-}
-
 TEST(Solver, OneTwoAndThreeThreadsGiveBitwiseIdenticalResultsOnADenseBed) {
     constexpr int kPerSide = 8;
     constexpr double kSpacing = 1.998e-3;  // 2 um overlap between lattice neighbours
@@ -201,7 +177,7 @@ TEST(Solver, OneTwoAndThreeThreadsGiveBitwiseIdenticalResultsOnADenseBed) {
     // Small grain so that every loop is split across all threads (the default keeps a bed this
     // size on one thread).
     o.parallel_grain = 16;
-    const ParticleSet p = pressed_lattice(kPerSide, kSpacing);
+    const ParticleSet p = test::pressed_lattice(kPerSide, kSpacing);
     const double dt = 2e-6;
     auto run = [&](int threads) {
         SolverOptions oo = o;

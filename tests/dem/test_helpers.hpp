@@ -47,6 +47,30 @@ inline SolverOptions paper000_options() {
     return o;
 }
 
+/// Simple cubic lattice of 2 mm spheres pressed 2 um into each other and into the walls and
+/// the floor, jittered by up to 0.5 um: every particle starts with several contacts.
+inline ParticleSet pressed_lattice(int per_side, double spacing) {
+    ParticleSet p;
+    const double r = 1e-3;
+    const double x0 = -0.5 * (per_side - 1) * spacing;
+    for (int iz = 0; iz < per_side; ++iz) {
+        for (int iy = 0; iy < per_side; ++iy) {
+            for (int ix = 0; ix < per_side; ++ix) {
+                const int id = (iz * per_side + iy) * per_side + ix;
+                auto jitter = [id](int axis) {  // deterministic, in [-0.5, 0.5] um
+                    return 1e-6 *
+                           (static_cast<double>((id * 7919 + axis * 104729) % 1001) / 1000.0 - 0.5);
+                };
+                p.positions_m.emplace_back(x0 + ix * spacing + jitter(0),
+                                           x0 + iy * spacing + jitter(1),
+                                           r - 2e-6 + iz * spacing + jitter(2));
+                p.radii_m.push_back(r);
+            }
+        }
+    }
+    return p;
+}
+
 /// Solid fraction of the axis-aligned region [lo, hi] (enclosure frame): the share of a
 /// regular lattice of m^3 sample points (cell centres) that lies inside a sphere. Counted per
 /// sphere over the lattice points of its bounding box, so the cost is N (2 r m / L)^3. The
