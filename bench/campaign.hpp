@@ -1,15 +1,70 @@
-// The stepped-sine campaign: arrangements x levels x frequencies, each sweep driven by the
-// RMS amplitude controller, checkpointed after every point, written as a recording.
+// The stepped-sine campaign as a function: arrangements x levels x frequencies, each sweep
+// driven by the RMS amplitude controller and checkpointed after every point, returned in
+// memory; writing the recording directory is a separate call (campaign_output.hpp).
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "bench/campaign_config.hpp"
+#include "bench/campaign_plan.hpp"
+#include "bench/checkpoint_store.hpp"
+#include "bench/sweep_runner.hpp"
+#include "identification/damping_curve.hpp"
+#include "identification/recording.hpp"
 
 namespace sb::bench {
 
+/// What a campaign run needs besides its config.
+struct CampaignContext {
+    int threads = 0;  ///< sweeps run in parallel; 0: OpenMP's default
+    /// Receives progress lines (a point starts, a point ends); empty: none.
+    std::function<void(const std::string&)> progress;
+    /// Where checkpoints, settled beds and per-point files go; null: nothing is kept.
+    CheckpointStore* store = nullptr;
+    /// Forget what the store holds for this config and simulate everything.
+    bool restart = false;
+    /// The sweeps to run (and on which frequencies); empty: the whole config.
+    Selection selection;
+};
+
+struct CampaignSummary {
+    int points = 0;          ///< points in the campaign
+    int resumed_points = 0;  ///< taken from the store instead of simulated
+    int converged = 0;
+    int limit_cycle = 0;
+    int closest = 0;
+    long long periods_simulated = 0;
+    double wall_time_s = 0.0;
+};
+
+/// Everything a campaign gives back.
+struct CampaignResult {
+    /// Channels and every point of every sweep (campaign order), as recording.toml and
+    /// points.csv hold them; the damping rows of `levels` in `recording.damping`.
+    identification::Recording recording;
+    /// Per arrangement and level: the FRF and every estimator (points with status `closest`
+    /// left out of the fits).
+    std::vector<identification::LevelIdentification> levels;
+    std::vector<SweepResult> sweeps;  ///< in campaign order
+    CampaignSummary summary;
+    std::string config_hash;  ///< of the resolved config (bench/resolved_config.hpp)
+    int threads = 1;
+    std::vector<std::string> channel_points;  ///< control point first
+};
+
+/// Runs (or resumes from context.store) the campaign of `config`. Sweeps are independent
+/// tasks run on context.threads threads; the numbers do not depend on the thread count nor
+/// on the store. Throws config::ConfigException when the config or the selection cannot run
+/// (no level, no arrangement, an unknown arrangement) or when the store holds another
+/// config's checkpoints (nothing simulated), dem::SimulationError when a DEM guard fires,
+/// std::runtime_error otherwise.
+CampaignResult run_campaign(const CampaignConfig& config, const CampaignContext& context);
+
+/// The CLI's campaign: checkpoints in out_dir, the recording directory written there.
 struct CampaignRunOptions {
     std::filesystem::path out_dir;     ///< the recording directory written (and resumed)
     int threads = 0;                   ///< sweeps run in parallel; 0: OpenMP's default
@@ -21,28 +76,8 @@ struct CampaignRunOptions {
     bool restart = false;
 };
 
-struct CampaignSummary {
-    int points = 0;          ///< points in the campaign
-    int resumed_points = 0;  ///< taken from checkpoints instead of simulated
-    int converged = 0;
-    int limit_cycle = 0;
-    int closest = 0;
-    long long periods_simulated = 0;
-    double wall_time_s = 0.0;
-};
-
-/// The structure of an arrangement: gravity set, mounting blocks added at the damper points,
-/// and the particles of rigid dampers (of every damper when all_particles_rigid) as rigid
-/// masses at the centre of a settled bed.
-structure::StructureSpec arrangement_structure(const CampaignConfig& config,
-                                               const ArrangementSpec& arrangement,
-                                               bool all_particles_rigid);
-
-/// Runs (or resumes) the campaign of `config` into options.out_dir. Finished points found in
-/// out_dir/checkpoints are not recomputed; the final files are the same as an uninterrupted
-/// run's. Throws config::ConfigException when the config cannot run a campaign (no levels,
-/// no arrangement) or when out_dir holds checkpoints of another config (nothing simulated),
-/// dem::SimulationError when a guard fires, std::runtime_error otherwise.
+/// run_campaign with a FileCheckpointStore in options.out_dir, then write_campaign_output
+/// there. Returns the summary; throws as run_campaign.
 CampaignSummary run_campaign(const CampaignConfig& config, const CampaignRunOptions& options);
 
 }  // namespace sb::bench

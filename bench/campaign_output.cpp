@@ -3,16 +3,12 @@
 
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <ctime>
-#include <fstream>
-#include <limits>
-#include <map>
 #include <sstream>
 
 #include "bench/resolved_config.hpp"
+#include "config/value.hpp"
 #include "core/text_file.hpp"
-#include "identification/damping_curve.hpp"
 #include "identification/plots.hpp"
 #include "identification/recording_io.hpp"
 #include "identification/uff58.hpp"
@@ -23,33 +19,6 @@ namespace {
 namespace fs = std::filesystem;
 namespace id = identification;
 
-id::Recording make_recording(const CampaignOutput& output) {
-    const CampaignConfig& config = *output.config;
-    const auto& excitation = config.structure.excitation;
-    id::Recording rec;
-    rec.info.name = config.name;
-    rec.info.kind = "simulated";
-    const bool force = excitation.kind == structure::ExcitationSpec::Kind::force;
-    rec.info.excitation = force ? "force" : "base";
-    rec.info.description = config.description;
-    if (force) {
-        rec.channels.push_back(
-            {"force", "force", "N", excitation.point, id::ChannelRole::reference});
-    } else {
-        rec.channels.push_back(
-            {"base_acc", "acceleration", "m/s^2", excitation.support, id::ChannelRole::reference});
-    }
-    for (std::size_t i = 0; i < output.channel_points.size(); ++i) {
-        rec.channels.push_back({"acc_" + output.channel_points[i], "acceleration", "m/s^2",
-                                output.channel_points[i],
-                                i == 0 ? id::ChannelRole::control : id::ChannelRole::response});
-    }
-    for (const auto& sweep : output.sweeps) {
-        rec.points.insert(rec.points.end(), sweep.rows.begin(), sweep.rows.end());
-    }
-    return rec;
-}
-
 std::string utc_now() {
     const std::time_t now = std::time(nullptr);
     char text[32];
@@ -57,96 +26,77 @@ std::string utc_now() {
     return text;
 }
 
-std::string toml_string(const std::string& s) {
-    std::string out = "\"";
-    for (char c : s) {
-        if (c == '"' || c == '\\') out += '\\';
-        out += c;
-    }
-    return out + "\"";
+std::string number_text(double v) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.9g", v);
+    return buffer;
 }
 
-void write_provenance(const CampaignOutput& output) {
+void write_provenance(const CampaignConfig& config, const CampaignResult& result,
+                      const RecordingDirectory& directory) {
     std::ostringstream text;
     text << "# How this recording was made. Not read back by ShakerBench.\n";
     text << "[provenance]\n";
-    text << "version = " << toml_string(SB_VERSION) << '\n';
-    text << "date = " << toml_string(utc_now()) << '\n';
-    text << "threads = " << output.threads << '\n';
-    text << "config = " << toml_string(output.config->source) << '\n';
-    text << "config_hash = " << toml_string(output.config_hash) << '\n';
-    text << "command = " << toml_string(output.options->command_line) << "\n\n";
-    for (const auto& sweep : output.sweeps) {
-        text << "[sweeps." << toml_string(sweep.key) << "]\n";
-        char f1[64];
-        std::snprintf(f1, sizeof f1, "%.9g", sweep.first_mode_hz);
-        text << "first_mode_hz = " << f1 << '\n';
+    text << "version = " << config::quoted(SB_VERSION) << '\n';
+    text << "date = " << config::quoted(utc_now()) << '\n';
+    text << "threads = " << result.threads << '\n';
+    text << "config = " << config::quoted(config.source) << '\n';
+    text << "config_hash = " << config::quoted(result.config_hash) << '\n';
+    text << "command = " << config::quoted(directory.command_line) << "\n\n";
+    for (const auto& sweep : result.sweeps) {
+        text << "[sweeps." << config::quoted(sweep.key) << "]\n";
+        text << "first_mode_hz = " << number_text(sweep.first_mode_hz) << '\n';
         text << "frequencies_hz = [";
         for (std::size_t i = 0; i < sweep.frequencies_hz.size(); ++i) {
-            std::snprintf(f1, sizeof f1, "%.9g", sweep.frequencies_hz[i]);
-            text << (i ? ", " : "") << f1;
+            text << (i ? ", " : "") << number_text(sweep.frequencies_hz[i]);
         }
         text << "]\n";
         text << "settings = [";
-        for (std::size_t i = 0; i < sweep.log.size(); ++i) {
-            text << (i ? ", " : "") << toml_string(sweep.log[i]);
+        for (std::size_t i = 0; i < sweep.settings.size(); ++i) {
+            text << (i ? ", " : "") << config::quoted(sweep.settings[i]);
         }
         text << "]\n\n";
     }
-    write_file_atomically(output.options->out_dir / "provenance.toml", text.str());
+    write_file_atomically(directory.out_dir / "provenance.toml", text.str());
 }
 
-void write_control_log(const CampaignOutput& output) {
+void write_control_log(const CampaignResult& result, const fs::path& out_dir) {
     std::string text =
         "arrangement,level_g,frequency_hz,status,periods,updates,amplitude_final,rms_final,"
         "amplitudes_tried,rms_per_period\n";
-    for (const auto& sweep : output.sweeps) {
-        for (const auto& line : sweep.control_log) {
-            text += line + "\n";
-        }
+    for (const auto& sweep : result.sweeps) {
+        for (const auto& line : sweep.control_log) text += line + "\n";
     }
-    write_file_atomically(output.options->out_dir / "control.csv", text);
+    write_file_atomically(out_dir / "control.csv", text);
+}
+
+void write_energy_log(const CampaignConfig& config, const CampaignResult& result,
+                      const fs::path& out_dir) {
+    std::string text = energy_csv_header(config.campaign.output.energy_layers);
+    for (const auto& sweep : result.sweeps) {
+        for (const auto& line : sweep.energy_log) text += line + "\n";
+    }
+    write_file_atomically(out_dir / "energy.csv", text);
 }
 
 }  // namespace
 
-std::string write_series(const fs::path& out_dir, const std::string& key, int index,
-                         const CoupledSpecimen& specimen, const SpecimenPlant& plant,
-                         const control::PointResult& result) {
-    id::TimeHistory history;
-    history.channels = specimen.channel_names();
-    history.columns.resize(history.channels.size());
-    const double period_s = 1.0 / specimen.frequency_hz();
-    for (int p = result.window_begin; p < result.window_end; ++p) {
-        const auto& period = plant.periods()[static_cast<std::size_t>(p)];
-        const std::size_t samples = period.series.front().size();
-        for (std::size_t k = 0; k < samples; ++k) {
-            history.time_s.push_back((p - result.window_begin) * period_s +
-                                     (static_cast<double>(k) + 1.0) * period_s /
-                                         static_cast<double>(samples));
-            for (std::size_t c = 0; c < history.channels.size(); ++c) {
-                history.columns[c].push_back(period.series[c][k]);
-            }
-        }
-    }
-    const std::string relative = "series/" + key + "_" + std::to_string(index) + ".csv";
-    fs::create_directories(out_dir / "series");
-    id::write_time_history_csv(out_dir / relative, history);
-    return relative;
+std::string energy_csv_header(int layers) {
+    std::string header =
+        "arrangement,level_g,frequency_hz,damper,wall_work_j,normal_damping_j,friction_j,"
+        "rolling_j,kinetic_j";
+    for (int k = 0; k < layers; ++k) header += ",layer_" + std::to_string(k + 1) + "_j";
+    return header + "\n";
 }
 
-void write_campaign_output(const CampaignOutput& output) {
-    const fs::path out_dir = output.options->out_dir;
-    id::Recording rec = make_recording(output);
-    id::IdentifyOptions identify;
-    identify.response_channel = "acc_" + output.channel_points.front();
-    const auto levels = id::identify_recording(rec, identify);
-    rec.damping = id::damping_rows(levels);
-    id::write_recording(out_dir, rec);
-
-    if (output.config->campaign.output.uff) {
+void write_campaign_output(const CampaignConfig& config, const CampaignResult& result,
+                           const RecordingDirectory& directory) {
+    const fs::path& out_dir = directory.out_dir;
+    fs::create_directories(out_dir);
+    id::write_recording(out_dir, result.recording);
+    if (config.campaign.output.uff) {
         std::vector<id::Uff58Record> records;
-        for (const auto& level : levels) {
+        for (const auto& level : result.levels) {
             char description[128];
             std::snprintf(description, sizeof description, "%s %.6g g", level.arrangement.c_str(),
                           level.level_g);
@@ -154,12 +104,13 @@ void write_campaign_output(const CampaignOutput& output) {
         }
         id::write_uff58(out_dir / "frf.uff", records);
     }
-    write_control_log(output);
-    write_file_atomically(out_dir / "config.toml", output.options->config_text);
-    write_file_atomically(out_dir / "config.resolved.toml", resolved_config_toml(*output.config));
-    write_provenance(output);
-    if (output.config->campaign.output.plots) {
-        const auto plots = id::write_plots(out_dir, levels);
+    write_control_log(result, out_dir);
+    if (config.campaign.output.energy) write_energy_log(config, result, out_dir);
+    write_file_atomically(out_dir / "config.toml", directory.config_text);
+    write_file_atomically(out_dir / "config.resolved.toml", resolved_config_toml(config));
+    write_provenance(config, result, directory);
+    if (config.campaign.output.plots) {
+        const auto plots = id::write_plots(out_dir, result.levels);
         if (!plots.message.empty())
             std::fprintf(stderr, "shakerbench: %s\n", plots.message.c_str());
     }

@@ -135,6 +135,16 @@ struct OutputSpec {
     int series_samples_per_period = 128;
     bool uff = true;    ///< transfer functions as UFF58
     bool plots = true;  ///< SVG plots through gnuplot, when it is installed
+    /// energy.csv: per point and DEM damper, the energy per period over the steady window by
+    /// mechanism and per horizontal layer (the DEM's energy ledger).
+    bool energy = false;
+    int energy_layers = 10;  ///< layers along gravity of energy.csv
+    /// ParaView files of the beds in vtk/: none, at the point of largest response of each
+    /// sweep, or at every point.
+    enum class Vtk { none, resonance, all };
+    static constexpr std::pair<Vtk, std::string_view> kVtkNames[] = {
+        {Vtk::none, "none"}, {Vtk::resonance, "resonance"}, {Vtk::all, "all"}};
+    Vtk vtk = Vtk::none;
 };
 
 struct CampaignSpec {

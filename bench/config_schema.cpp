@@ -261,6 +261,23 @@ std::shared_ptr<const config::Table> output_table() {
     t.boolean(
         "plots", [](OutputSpec & o) -> auto& { return o.plots; },
         "SVG plots through gnuplot, when it is installed");
+    t.boolean(
+        "energy", [](OutputSpec & o) -> auto& { return o.energy; },
+        "energy.csv: per point and DEM damper, the energy per period over the steady "
+        "window: wall work, dissipation by normal damping, friction and rolling, kinetic "
+        "energy, and dissipation per horizontal layer");
+    t.integer(
+         "energy_layers", [](OutputSpec & o) -> auto& { return o.energy_layers; },
+         "horizontal layers (along gravity) of energy.csv")
+        .bound(Bound::at_least(1))
+        .when([](const OutputSpec& o) { return o.energy; }, "only with energy = true", true);
+    t.choice(
+         "vtk", [](OutputSpec & o) -> auto& { return o.vtk; }, OutputSpec::kVtkNames,
+         "ParaView files of the beds in vtk/")
+        .doc(
+            "ParaView (legacy VTK) files of every DEM bed in its enclosure frame at the end of "
+            "a point's steady window, in `vtk/`: `resonance` at the point of largest response "
+            "of each sweep, `all` at every point");
     return t.build();
 }
 

@@ -1,4 +1,4 @@
-// The structure with its particle dampers, stepped together.
+// The structure with its attachments, stepped together.
 #include "bench/coupled_specimen.hpp"
 
 #include <Eigen/Geometry>
@@ -26,7 +26,7 @@ Eigen::Matrix3d rotation_of(const Eigen::Vector3d& theta) {
 CoupledSpecimen::CoupledSpecimen(const structure::LinearModel& model,
                                  const structure::ModalBasis& basis,
                                  const structure::ExcitationSpec& excitation,
-                                 std::vector<MountedDamper> dampers,
+                                 std::vector<Attachment> attachments,
                                  std::vector<std::string> channel_points, double dt_max_s,
                                  int step_multiple)
     : model_(&model),
@@ -34,12 +34,12 @@ CoupledSpecimen::CoupledSpecimen(const structure::LinearModel& model,
       start_model_(&model),
       start_basis_(&basis),
       excitation_(excitation),
-      dampers_(std::move(dampers)),
+      attachments_(std::move(attachments)),
       channel_points_(std::move(channel_points)),
       direction_(excitation.direction.normalized()),
       dt_max_s_(dt_max_s),
       step_multiple_(std::max(1, step_multiple)) {
-    damper_loads_.assign(dampers_.size(), Eigen::Matrix<double, 6, 1>::Zero());
+    loads_.assign(attachments_.size(), Eigen::Matrix<double, 6, 1>::Zero());
     if (!(dt_max_s_ > 0.0)) {
         throw std::invalid_argument("coupled specimen: the largest time step must be > 0");
     }
@@ -80,9 +80,17 @@ void CoupledSpecimen::set_frequency(double frequency_hz) {
         kept.q_dot = structure_->q_dot();
     }
     structure_ = std::make_unique<structure::ReducedModalModel>(*model_, *basis_, dt_s_);
-    damper_point_index_.clear();
-    for (const auto& d : dampers_) {
-        damper_point_index_.push_back(structure_->point_index(d.point));
+    attachment_point_index_.clear();
+    loaded_points_.clear();
+    const auto add_loaded = [this](int index) {
+        if (std::find(loaded_points_.begin(), loaded_points_.end(), index) ==
+            loaded_points_.end()) {
+            loaded_points_.push_back(index);
+        }
+    };
+    for (const auto& a : attachments_) {
+        attachment_point_index_.push_back(structure_->point_index(a.point));
+        add_loaded(attachment_point_index_.back());
     }
     channel_index_.clear();
     for (const auto& p : channel_points_) {
@@ -90,12 +98,13 @@ void CoupledSpecimen::set_frequency(double frequency_hz) {
     }
     if (excitation_.kind == structure::ExcitationSpec::Kind::force) {
         shaker_index_ = structure_->point_index(excitation_.point);
+        add_loaded(shaker_index_);
     }
+    point_totals_.assign(loaded_points_.size(), Eigen::Matrix<double, 6, 1>::Zero());
     if (had_state) {
         // A point starts at phase 0 of its own sine (whole periods before it end there too),
         // so the excitation is continuous across the frequency change.
-        set_point_loads();
-        set_excitation(0.0, 0.0);
+        set_loads(0.0, 0.0);
         structure_->set_state(kept.q, kept.q_dot, 0.0);
     }
 }
@@ -104,10 +113,21 @@ double CoupledSpecimen::excitation_value(double amplitude, double time_s) const 
     return amplitude * std::sin(hz_to_rad_s(frequency_hz_) * time_s);
 }
 
-void CoupledSpecimen::set_excitation(double amplitude, double time_s) {
+void CoupledSpecimen::set_loads(double amplitude, double time_s) {
+    // Every load at a point adds up: several attachments, and the shaker's force where an
+    // attachment sits at the shaker point (set one by one, each would replace the other).
+    for (auto& total : point_totals_) total.setZero();
+    const auto slot = [this](int point) {
+        return static_cast<std::size_t>(
+            std::find(loaded_points_.begin(), loaded_points_.end(), point) -
+            loaded_points_.begin());
+    };
+    for (std::size_t i = 0; i < attachments_.size(); ++i) {
+        point_totals_[slot(attachment_point_index_[i])] += loads_[i];
+    }
     const double value = excitation_value(amplitude, time_s);
     if (excitation_.kind == structure::ExcitationSpec::Kind::force) {
-        structure_->set_point_load(shaker_index_, value * direction_, Eigen::Vector3d::Zero());
+        point_totals_[slot(shaker_index_)].head<3>() += value * direction_;
     } else {
         const double w = hz_to_rad_s(frequency_hz_);
         const double phase = w * time_s;
@@ -115,37 +135,9 @@ void CoupledSpecimen::set_excitation(double amplitude, double time_s) {
         structure_->set_base_motion(-amplitude / (w * w) * std::sin(phase),
                                     -amplitude / w * std::cos(phase), value);
     }
-}
-
-void CoupledSpecimen::apply_damper_loads() {
-    for (std::size_t i = 0; i < dampers_.size(); ++i) {
-        const auto& d = dampers_[i];
-        if (!d.solver) {
-            continue;
-        }
-        const Eigen::Vector3d r =
-            rotation_of(structure_->rotation(damper_point_index_[i])) * d.offset_m;
-        const Eigen::Vector3d force = d.solver->wall_force();
-        // The wall moment is about the enclosure origin; moved to the point: M + r x F.
-        damper_loads_[i] << force, d.solver->wall_moment() + r.cross(force);
-    }
-    set_point_loads();
-}
-
-void CoupledSpecimen::set_point_loads() {
-    // Several dampers may share a point: their loads add up.
-    for (std::size_t i = 0; i < dampers_.size(); ++i) {
-        bool first_at_point = true;
-        Eigen::Matrix<double, 6, 1> total = Eigen::Matrix<double, 6, 1>::Zero();
-        for (std::size_t j = 0; j < dampers_.size(); ++j) {
-            if (damper_point_index_[j] == damper_point_index_[i]) {
-                first_at_point = first_at_point && j >= i;
-                total += damper_loads_[j];
-            }
-        }
-        if (first_at_point) {
-            structure_->set_point_load(damper_point_index_[i], total.head<3>(), total.tail<3>());
-        }
+    for (std::size_t k = 0; k < loaded_points_.size(); ++k) {
+        structure_->set_point_load(loaded_points_[k], point_totals_[k].head<3>(),
+                                   point_totals_[k].tail<3>());
     }
 }
 
@@ -156,9 +148,9 @@ void CoupledSpecimen::start_from_linear_steady_state(double amplitude, double ti
     }
     // The enclosures jump with the structure: the particles go with them, keeping their
     // positions and velocities relative to their enclosure.
-    std::vector<dem::ParticleSet> local;
-    for (const auto& d : dampers_) {
-        local.push_back(d.solver ? d.solver->local_snapshot() : dem::ParticleSet{});
+    std::vector<AttachmentState> kept;
+    for (std::size_t i = 0; i < attachments_.size(); ++i) {
+        kept.push_back(state_at(attachments_[i], point_motion(i)));
     }
     // The start model's steady state in physical DOFs, x = Phi_s q_s, projected on the
     // specimen's mass-normalised modes: q = Phi^T M x (both models share their free DOFs).
@@ -166,8 +158,6 @@ void CoupledSpecimen::start_from_linear_steady_state(double amplitude, double ti
     if (excitation_.kind == structure::ExcitationSpec::Kind::force) {
         start.set_harmonic_steady_state(excitation_.point, direction_, amplitude, frequency_hz_,
                                         time_s);
-        structure_->set_harmonic_steady_state(excitation_.point, direction_, amplitude,
-                                              frequency_hz_, time_s);
     } else {
         start.set_harmonic_base_steady_state(amplitude, frequency_hz_, time_s);
         structure_->set_harmonic_base_steady_state(amplitude, frequency_hz_, time_s);
@@ -187,52 +177,32 @@ void CoupledSpecimen::start_from_linear_steady_state(double amplitude, double ti
         q_linear = phasor.real();
         q_dot_linear = -w * phasor.imag();
     }
-    // Static deflection under the particles' weight at rest on the walls, so that the weight
-    // does not start a transient: q_s = phi^T f_w / omega^2.
+    // Static deflection under the attachments' weight at rest on their walls, so that the
+    // weight does not start a transient: q_s = phi^T f_w / omega^2.
     Eigen::VectorXd q = q_linear;
     const int modes = structure_->modes();
-    for (std::size_t i = 0; i < dampers_.size(); ++i) {
-        const auto& d = dampers_[i];
-        if (!d.solver) {
-            continue;
-        }
-        // The bed's centre of gravity from its enclosure-frame positions and the mounting
-        // (not from the solver's world positions, which sit wherever its last pose was).
-        double mass_kg = 0.0;
-        Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
-        const auto& state = d.solver->particles();
-        for (std::size_t k = 0; k < state.size(); ++k) {
-            const double m = 1.0 / state.inv_mass[k];
-            mass_kg += m;
-            first_moment += m * local[i].positions_m[k];
-        }
-        const Eigen::Vector3d weight = mass_kg * d.solver->options().gravity_m_s2;
-        const Eigen::Vector3d arm = d.offset_m + d.mount_rotation * (first_moment / mass_kg);
-        const Eigen::VectorXd f = model_->point_load(d.point, weight, arm.cross(weight));
+    for (std::size_t i = 0; i < attachments_.size(); ++i) {
+        const PointLoad w = weight(attachments_[i]);
+        const Eigen::VectorXd f = model_->point_load(attachments_[i].point, w.force_n, w.moment_nm);
         for (int m = 0; m < modes; ++m) {
-            const double w = basis_->modes[static_cast<std::size_t>(m)].frequency_hz * kTwoPi;
-            q[m] += basis_->shapes.col(m).dot(f) / (w * w);
+            const double omega = basis_->modes[static_cast<std::size_t>(m)].frequency_hz * kTwoPi;
+            q[m] += basis_->shapes.col(m).dot(f) / (omega * omega);
         }
-        damper_loads_[i] << weight, arm.cross(weight);
+        loads_[i] << w.force_n, w.moment_nm;
     }
-    set_point_loads();
+    set_loads(amplitude, time_s);
     structure_->set_state(q, q_dot_linear, time_s);
-    rebuild_solvers(local);
+    carry_attachments(kept);
 }
 
 void CoupledSpecimen::step(double amplitude, std::vector<double>& values) {
     const double dt = dt_s_;
-    for (std::size_t i = 0; i < dampers_.size(); ++i) {
-        auto& d = dampers_[i];
-        if (!d.solver) {
-            continue;
-        }
-        d.solver->set_enclosure_state(enclosure_state(i));
-        d.solver->step(dt);
+    for (std::size_t i = 0; i < attachments_.size(); ++i) {
+        const PointLoad load = bench::step(attachments_[i], point_motion(i), dt);
+        loads_[i] << load.force_n, load.moment_nm;
     }
-    apply_damper_loads();
     const double t_next = structure_->time_s() + dt;
-    set_excitation(amplitude, t_next);
+    set_loads(amplitude, t_next);
     structure_->step();
 
     values.resize(names_.size());
@@ -242,18 +212,15 @@ void CoupledSpecimen::step(double amplitude, std::vector<double>& values) {
     }
 }
 
-dem::EnclosureState CoupledSpecimen::enclosure_state(std::size_t damper) const {
-    const auto& d = dampers_[damper];
-    const int p = damper_point_index_[damper];
-    const Eigen::Matrix3d small = rotation_of(structure_->rotation(p));
-    const Eigen::Vector3d r = small * d.offset_m;
-    const Eigen::Vector3d omega = structure_->angular_velocity(p);
-    dem::EnclosureState enclosure;
-    enclosure.position_m = model_->point(d.point).position_m + structure_->displacement(p) + r;
-    enclosure.rotation = small * d.mount_rotation;
-    enclosure.velocity_m_s = structure_->velocity(p) + omega.cross(r);
-    enclosure.angular_velocity_rad_s = omega;
-    return enclosure;
+PointMotion CoupledSpecimen::point_motion(std::size_t attachment) const {
+    const int p = attachment_point_index_[attachment];
+    PointMotion m;
+    m.position_m =
+        model_->point(attachments_[attachment].point).position_m + structure_->displacement(p);
+    m.rotation = rotation_of(structure_->rotation(p));
+    m.velocity_m_s = structure_->velocity(p);
+    m.angular_velocity_rad_s = structure_->angular_velocity(p);
+    return m;
 }
 
 const Eigen::VectorXd& CoupledSpecimen::modal_displacement() const {
@@ -267,27 +234,23 @@ void CoupledSpecimen::scale_response(double ratio, const Eigen::VectorXd& q_mean
     const Eigen::VectorXd& q = modal_displacement();
     const Eigen::VectorXd scaled = q_mean + ratio * (q - q_mean);
     const Eigen::VectorXd scaled_rate = ratio * structure_->q_dot();
-    // The beds ride with their enclosures through the jump: same enclosure-frame positions
-    // and relative velocities, as between two points (restore()), so the jump itself starts
-    // no impacts.
-    std::vector<dem::ParticleSet> local(dampers_.size());
-    for (std::size_t i = 0; i < dampers_.size(); ++i) {
-        if (dampers_[i].solver) {
-            local[i] = dampers_[i].solver->local_snapshot();
-        }
+    // The beds ride with their enclosures through the jump: same enclosure-frame positions,
+    // relative velocities and contact histories, as between two points (restore()), so the
+    // jump itself starts no impacts.
+    std::vector<AttachmentState> kept;
+    for (std::size_t i = 0; i < attachments_.size(); ++i) {
+        kept.push_back(state_at(attachments_[i], point_motion(i)));
     }
     structure_->set_state(scaled, scaled_rate, structure_->time_s());
-    rebuild_solvers(local);
+    carry_attachments(kept);
 }
 
 SpecimenState CoupledSpecimen::state() const {
     SpecimenState s;
     s.q = structure_->q();
     s.q_dot = structure_->q_dot();
-    s.damper_loads = damper_loads_;
-    for (const auto& d : dampers_) {
-        s.particles.push_back(d.solver ? d.solver->local_snapshot() : dem::ParticleSet{});
-    }
+    s.loads = loads_;
+    for (const auto& a : attachments_) s.attachments.push_back(bench::state(a));
     return s;
 }
 
@@ -295,26 +258,23 @@ void CoupledSpecimen::restore(const SpecimenState& state) {
     if (!structure_) {
         throw std::logic_error("coupled specimen: set_frequency before restoring");
     }
-    if (state.particles.size() != dampers_.size() || state.damper_loads.size() != dampers_.size()) {
-        throw std::invalid_argument("coupled specimen: state has " +
-                                    std::to_string(state.particles.size()) +
-                                    " dampers, the specimen " + std::to_string(dampers_.size()));
+    if (state.attachments.size() != attachments_.size() ||
+        state.loads.size() != attachments_.size()) {
+        throw std::invalid_argument(
+            "coupled specimen: state has " + std::to_string(state.attachments.size()) +
+            " attachments, the specimen " + std::to_string(attachments_.size()));
     }
-    damper_loads_ = state.damper_loads;
-    set_point_loads();
-    set_excitation(0.0, 0.0);
+    loads_ = state.loads;
+    set_loads(0.0, 0.0);
     structure_->set_state(state.q, state.q_dot, 0.0);
-    rebuild_solvers(state.particles);
+    for (std::size_t i = 0; i < attachments_.size(); ++i) {
+        bench::restore(attachments_[i], state.attachments[i]);
+    }
 }
 
-void CoupledSpecimen::rebuild_solvers(const std::vector<dem::ParticleSet>& local) {
-    for (std::size_t i = 0; i < dampers_.size(); ++i) {
-        auto& d = dampers_[i];
-        if (!d.solver) {
-            continue;
-        }
-        const dem::SolverOptions options = d.solver->options();
-        d.solver = std::make_unique<dem::Solver>(options, local[i], enclosure_state(i));
+void CoupledSpecimen::carry_attachments(const std::vector<AttachmentState>& states) {
+    for (std::size_t i = 0; i < attachments_.size(); ++i) {
+        bench::restore_at(attachments_[i], states[i], point_motion(i));
     }
 }
 

@@ -1,5 +1,5 @@
-// The structure with its particle dampers, stepped together: loose (staggered) coupling at
-// the DEM time step, as in paper 000 section 3.1.
+// The structure with what is attached to it (particle dampers, ...), stepped together: loose
+// (staggered) coupling at the DEM time step, as in paper 000 section 3.1.
 #pragma once
 
 #include <Eigen/Core>
@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "bench/attachment.hpp"
 #include "bench/campaign_spec.hpp"
-#include "dem/solver.hpp"
 #include "structure/linear_model.hpp"
 #include "structure/modal_analysis.hpp"
 #include "structure/reduced_modal_model.hpp"
@@ -17,37 +17,28 @@
 
 namespace sb::bench {
 
-/// A damper attached to a named point: its DEM solver (absent for a rigid damper) and where
-/// its enclosure sits relative to the point.
-struct MountedDamper {
-    std::string name;
-    std::string point;
-    Eigen::Matrix3d mount_rotation = Eigen::Matrix3d::Identity();  ///< enclosure -> structure
-    Eigen::Vector3d offset_m = Eigen::Vector3d::Zero();  ///< enclosure origin from the point
-    std::unique_ptr<dem::Solver> solver;                 ///< null for a rigid damper
-};
-
 /// The state a sweep carries from one point to the next (and through a checkpoint). Every
-/// point starts at its own time 0 (phase 0 of its sine), so no clock is kept.
+/// point starts at its own time 0 (phase 0 of its sine), so no structural clock is kept; a
+/// DEM damper keeps its own clock (lock release) in its state.
 struct SpecimenState {
-    Eigen::VectorXd q;                        ///< modal displacements
-    Eigen::VectorXd q_dot;                    ///< modal velocities
-    std::vector<dem::ParticleSet> particles;  ///< per damper, enclosure frame
-    /// Per damper: the force [N] and moment [N m] it applied at its point in the last step.
-    std::vector<Eigen::Matrix<double, 6, 1>> damper_loads;
+    Eigen::VectorXd q;                         ///< modal displacements
+    Eigen::VectorXd q_dot;                     ///< modal velocities
+    std::vector<AttachmentState> attachments;  ///< per attachment
+    /// Per attachment: the force [N] and moment [N m] it applied at its point in the last step.
+    std::vector<Eigen::Matrix<double, 6, 1>> loads;
 };
 
-/// Structure + dampers + excitation. Every step: the structure's kinematics at each damper
-/// point move its enclosure, the DEM advances, and the wall force and moment (moved to the
-/// point) load the structure over the same step.
+/// Structure + attachments + excitation. Every step: each attachment gets the motion of its
+/// point and returns its load over the step; the loads at each point (the shaker's force
+/// included) are summed and load the structure over the same step.
 class CoupledSpecimen {
   public:
     /// `channel_points`: the points whose acceleration along the excitation direction is
     /// recorded (channels "acc_<point>"); the first one is the control channel.
     CoupledSpecimen(const structure::LinearModel& model, const structure::ModalBasis& basis,
-                    const structure::ExcitationSpec& excitation, std::vector<MountedDamper> dampers,
-                    std::vector<std::string> channel_points, double dt_max_s,
-                    int step_multiple = 1);
+                    const structure::ExcitationSpec& excitation,
+                    std::vector<Attachment> attachments, std::vector<std::string> channel_points,
+                    double dt_max_s, int step_multiple = 1);
 
     /// Names of the recorded channels: the reference ("force" or "base_acc") first, then
     /// "acc_<point>" for each channel point.
@@ -80,9 +71,10 @@ class CoupledSpecimen {
     /// the step into `values` (size = channel_names().size()).
     void step(double amplitude, std::vector<double>& values);
 
-    /// State for warm starts and checkpoints; restore() rebuilds the DEM solvers from it and
-    /// restarts the point clock at 0. A sweep goes through state() and restore() between every
-    /// two points, interrupted or not, so a resumed campaign repeats the same arithmetic.
+    /// State for warm starts and checkpoints; restore() continues every attachment from it
+    /// (a DEM damper with its contact histories and clock) and restarts the point clock at 0.
+    /// A sweep goes through state() and restore() between every two points, interrupted or
+    /// not, so a resumed campaign repeats the same arithmetic.
     [[nodiscard]] SpecimenState state() const;
 
     /// Modal displacements of the structure now.
@@ -95,28 +87,29 @@ class CoupledSpecimen {
     void scale_response(double ratio, const Eigen::VectorXd& q_mean);
     void restore(const SpecimenState& state);
 
-    [[nodiscard]] const std::vector<MountedDamper>& dampers() const { return dampers_; }
+    [[nodiscard]] const std::vector<Attachment>& attachments() const { return attachments_; }
+    /// The motion of attachment i's point now.
+    [[nodiscard]] PointMotion point_motion(std::size_t attachment) const;
 
   private:
-    /// Takes every DEM damper's wall force and moment of the last step as its point load.
-    void apply_damper_loads();
-    /// New DEM solvers with these particles (enclosure frame) in the enclosures' current pose.
-    void rebuild_solvers(const std::vector<dem::ParticleSet>& local);
-    /// Hands damper_loads_ to the structure, summed per point.
-    void set_point_loads();
-    /// Pose and velocity of a damper's enclosure from the structure's current kinematics.
-    [[nodiscard]] dem::EnclosureState enclosure_state(std::size_t damper) const;
+    /// Continues every attachment from `states` (taken relative to its point's pose before
+    /// the structure jumped) with its point where the structure now puts it.
+    void carry_attachments(const std::vector<AttachmentState>& states);
+    /// The loads at the end of the next step: every attachment's (loads_) and the excitation
+    /// at `time_s`, summed per point.
+    void set_loads(double amplitude, double time_s);
     [[nodiscard]] double excitation_value(double amplitude, double time_s) const;
-    void set_excitation(double amplitude, double time_s);
 
     const structure::LinearModel* model_;
     const structure::ModalBasis* basis_;
     const structure::LinearModel* start_model_;
     const structure::ModalBasis* start_basis_;
     structure::ExcitationSpec excitation_;
-    std::vector<MountedDamper> dampers_;
-    std::vector<int> damper_point_index_;
-    std::vector<Eigen::Matrix<double, 6, 1>> damper_loads_;  ///< last applied, per damper
+    std::vector<Attachment> attachments_;
+    std::vector<int> attachment_point_index_;
+    std::vector<Eigen::Matrix<double, 6, 1>> loads_;         ///< last applied, per attachment
+    std::vector<int> loaded_points_;                         ///< every point a load acts at
+    std::vector<Eigen::Matrix<double, 6, 1>> point_totals_;  ///< work space, per loaded point
     std::vector<std::string> channel_points_;
     std::vector<int> channel_index_;
     std::vector<std::string> names_;

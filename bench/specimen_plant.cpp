@@ -9,11 +9,42 @@
 
 namespace sb::bench {
 
+namespace {
+
+/// The energies a damper's ledger holds now (cumulative works, current kinetic energy).
+PeriodEnergy ledger_now(const dem::Solver& solver) {
+    const dem::EnergyLedger l = solver.energy();
+    PeriodEnergy e;
+    e.wall_work_j = l.wall_work;
+    e.normal_damping_j = l.normal_damping;
+    e.friction_j = l.friction;
+    e.rolling_j = l.rolling;
+    e.kinetic_j = l.kinetic_translational + l.kinetic_rotational;
+    e.layer_dissipation_j = l.layer_dissipation;
+    return e;
+}
+
+/// One period's energies: the cumulative works' differences, the kinetic energy at its end.
+PeriodEnergy over_period(const PeriodEnergy& begin, const PeriodEnergy& end) {
+    PeriodEnergy e = end;
+    e.wall_work_j -= begin.wall_work_j;
+    e.normal_damping_j -= begin.normal_damping_j;
+    e.friction_j -= begin.friction_j;
+    e.rolling_j -= begin.rolling_j;
+    for (std::size_t k = 0; k < e.layer_dissipation_j.size(); ++k) {
+        e.layer_dissipation_j[k] -= begin.layer_dissipation_j[k];
+    }
+    return e;
+}
+
+}  // namespace
+
 SpecimenPlant::SpecimenPlant(CoupledSpecimen& specimen, int series_samples_per_period,
-                             bool scale_response_on_update)
+                             bool scale_response_on_update, bool track_energy)
     : specimen_(&specimen),
       series_samples_per_period_(series_samples_per_period),
-      scale_response_on_update_(scale_response_on_update) {}
+      scale_response_on_update_(scale_response_on_update),
+      track_energy_(track_energy) {}
 
 control::PeriodResult SpecimenPlant::run_period(double amplitude, double frequency_hz) {
     if (frequency_hz != specimen_->frequency_hz()) {
@@ -34,6 +65,16 @@ control::PeriodResult SpecimenPlant::run_period(double amplitude, double frequen
         s.assign(static_cast<std::size_t>(n), 0.0);
     }
     period_sum_q_.setZero(specimen_->modal_displacement().size());
+    // The ledgers at the period's start (after any scaling, which restarts them).
+    const auto& attachments = specimen_->attachments();
+    std::vector<std::optional<PeriodEnergy>> energy_begin(attachments.size());
+    if (track_energy_) {
+        for (std::size_t a = 0; a < attachments.size(); ++a) {
+            if (const dem::Solver* solver = dem_solver(attachments[a])) {
+                energy_begin[a] = ledger_now(*solver);
+            }
+        }
+    }
     for (int k = 0; k < n; ++k) {
         specimen_->step(amplitude, values_);
         for (std::size_t c = 0; c < channels; ++c) {
@@ -57,18 +98,30 @@ control::PeriodResult SpecimenPlant::run_period(double amplitude, double frequen
     period.mean.resize(channels);
     period.mean_square.resize(channels);
     period.fundamental.resize(channels);
+    period.second.resize(channels);
+    period.third.resize(channels);
     const double w_dt = kTwoPi / n;
     std::vector<std::complex<double>> phasor(static_cast<std::size_t>(n));
+    std::vector<std::complex<double>> phasor2(static_cast<std::size_t>(n));
+    std::vector<std::complex<double>> phasor3(static_cast<std::size_t>(n));
     for (int k = 0; k < n; ++k) {
-        phasor[static_cast<std::size_t>(k)] = std::polar(1.0, -w_dt * (k + 1));
+        const auto i = static_cast<std::size_t>(k);
+        phasor[i] = std::polar(1.0, -w_dt * (k + 1));
+        phasor2[i] = std::polar(1.0, -2.0 * w_dt * (k + 1));
+        phasor3[i] = std::polar(1.0, -3.0 * w_dt * (k + 1));
     }
     for (std::size_t c = 0; c < channels; ++c) {
         const auto& x = samples_[c];
         double sum = 0.0;
         std::complex<double> acc = 0.0;
+        std::complex<double> acc2 = 0.0;
+        std::complex<double> acc3 = 0.0;
         for (int k = 0; k < n; ++k) {
-            sum += x[static_cast<std::size_t>(k)];
-            acc += x[static_cast<std::size_t>(k)] * phasor[static_cast<std::size_t>(k)];
+            const auto i = static_cast<std::size_t>(k);
+            sum += x[i];
+            acc += x[i] * phasor[i];
+            acc2 += x[i] * phasor2[i];
+            acc3 += x[i] * phasor3[i];
         }
         const double mean = sum / n;
         double ms = 0.0;
@@ -77,7 +130,10 @@ control::PeriodResult SpecimenPlant::run_period(double amplitude, double frequen
         }
         period.mean[c] = mean;
         period.mean_square[c] = ms / n;
+        // Whole periods sampled uniformly: the DFT bins at w, 2w, 3w are exact harmonics.
         period.fundamental[c] = 2.0 / n * acc;
+        period.second[c] = 2.0 / n * acc2;
+        period.third[c] = 2.0 / n * acc3;
         if (series_samples_per_period_ > 0) {
             const int stride = std::max(1, n / series_samples_per_period_);
             std::vector<double> kept;
@@ -85,6 +141,16 @@ control::PeriodResult SpecimenPlant::run_period(double amplitude, double frequen
                 kept.push_back(x[static_cast<std::size_t>(k)]);
             }
             period.series.push_back(std::move(kept));
+        }
+    }
+
+    if (track_energy_) {
+        period.energy.resize(attachments.size());
+        for (std::size_t a = 0; a < attachments.size(); ++a) {
+            if (energy_begin[a]) {
+                period.energy[a] =
+                    over_period(*energy_begin[a], ledger_now(*dem_solver(attachments[a])));
+            }
         }
     }
 
@@ -110,6 +176,8 @@ WindowChannels SpecimenPlant::window(int begin, int end) const {
     WindowChannels out;
     out.rms.assign(channels, 0.0);
     out.fundamental.assign(channels, 0.0);
+    out.h2_ratio.assign(channels, 0.0);
+    out.h3_ratio.assign(channels, 0.0);
     for (std::size_t c = 0; c < channels; ++c) {
         double mean = 0.0;
         for (int p = begin; p < end; ++p) {
@@ -124,6 +192,41 @@ WindowChannels SpecimenPlant::window(int begin, int end) const {
             out.fundamental[c] += period.fundamental[c] / count;
         }
         out.rms[c] = std::sqrt(ms);
+        std::complex<double> second = 0.0;
+        std::complex<double> third = 0.0;
+        for (int p = begin; p < end; ++p) {
+            second += periods_[static_cast<std::size_t>(p)].second[c] / count;
+            third += periods_[static_cast<std::size_t>(p)].third[c] / count;
+        }
+        const double first = std::abs(out.fundamental[c]);
+        out.h2_ratio[c] = first > 0.0 ? std::abs(second) / first : 0.0;
+        out.h3_ratio[c] = first > 0.0 ? std::abs(third) / first : 0.0;
+    }
+    return out;
+}
+
+std::vector<std::optional<PeriodEnergy>> SpecimenPlant::window_energy(int begin, int end) const {
+    std::vector<std::optional<PeriodEnergy>> out(specimen_->attachments().size());
+    if (!track_energy_ || begin >= end) return out;
+    const double count = end - begin;
+    for (std::size_t a = 0; a < out.size(); ++a) {
+        for (int p = begin; p < end; ++p) {
+            const auto& e = periods_[static_cast<std::size_t>(p)].energy;
+            if (a >= e.size() || !e[a]) continue;
+            if (!out[a]) {
+                out[a] = PeriodEnergy{};
+                out[a]->layer_dissipation_j.assign(e[a]->layer_dissipation_j.size(), 0.0);
+            }
+            PeriodEnergy& m = *out[a];
+            m.wall_work_j += e[a]->wall_work_j / count;
+            m.normal_damping_j += e[a]->normal_damping_j / count;
+            m.friction_j += e[a]->friction_j / count;
+            m.rolling_j += e[a]->rolling_j / count;
+            m.kinetic_j += e[a]->kinetic_j / count;
+            for (std::size_t k = 0; k < m.layer_dissipation_j.size(); ++k) {
+                m.layer_dissipation_j[k] += e[a]->layer_dissipation_j[k] / count;
+            }
+        }
     }
     return out;
 }

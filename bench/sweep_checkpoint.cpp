@@ -7,7 +7,7 @@
 namespace sb::bench {
 namespace {
 
-constexpr const char* kMagic = "shakerbench-sweep-checkpoint 2";
+constexpr const char* kMagic = "shakerbench-sweep-checkpoint 3";
 
 class Writer {
   public:
@@ -107,6 +107,133 @@ Eigen::VectorXd read_vector(Reader& r, const char* key) {
 
 }  // namespace
 
+namespace {
+
+void write_vector3(Writer& w, const Eigen::Vector3d& v) {
+    for (int k = 0; k < 3; ++k) w.num(v[k]);
+}
+
+Eigen::Vector3d read_vector3(Reader& r, std::istringstream& words) {
+    Eigen::Vector3d v;
+    for (int k = 0; k < 3; ++k) v[k] = r.num(words);
+    return v;
+}
+
+void write_dem_state(Writer& w, const dem::SolverState& s) {
+    w.key("enclosure");
+    write_vector3(w, s.enclosure.position_m);
+    for (int a = 0; a < 3; ++a) {
+        for (int b = 0; b < 3; ++b) w.num(s.enclosure.rotation(a, b));
+    }
+    write_vector3(w, s.enclosure.velocity_m_s);
+    write_vector3(w, s.enclosure.angular_velocity_rad_s);
+    w.end();
+    w.key("particles").integer(static_cast<long long>(s.positions_m.size())).end();
+    for (std::size_t i = 0; i < s.positions_m.size(); ++i) {
+        w.key("p");
+        write_vector3(w, s.positions_m[i]);
+        w.num(s.radii_m[i]);
+        write_vector3(w, s.velocities_m_s[i]);
+        write_vector3(w, s.angular_velocities_rad_s[i]);
+        w.end();
+    }
+    w.key("pairs").integer(static_cast<long long>(s.pair_histories.size())).end();
+    for (const auto& h : s.pair_histories) {
+        w.key("h").integer(h.i).integer(h.j);
+        write_vector3(w, h.history_m);
+        w.end();
+    }
+    w.key("walls").integer(static_cast<long long>(s.wall_histories.size())).end();
+    for (const auto& h : s.wall_histories) {
+        w.key("w").integer(h.particle).integer(h.wall);
+        write_vector3(w, h.history_m);
+        w.end();
+    }
+    w.key("locked").integer(static_cast<long long>(s.locked.size())).end();
+    for (const auto& l : s.locked) {
+        w.key("k").integer(l.id);
+        write_vector3(w, l.position_m);
+        w.end();
+    }
+    w.key("clock").integer(s.released ? 1 : 0).num(s.time_s).integer(s.step).end();
+    w.key("layers");
+    write_vector3(w, s.layers_up);
+    w.end();
+}
+
+std::uint32_t read_id(Reader& r, std::istringstream& words) {
+    const long long v = r.integer(words);
+    if (v < 0 || v > 0xffffffffLL) r.fail("implausible id");
+    return static_cast<std::uint32_t>(v);
+}
+
+long long read_count(Reader& r, const char* key) {
+    auto words = r.line(key);
+    const long long n = r.integer(words);
+    if (n < 0 || n > 100000000) r.fail("implausible count");
+    return n;
+}
+
+dem::SolverState read_dem_state(Reader& r) {
+    dem::SolverState s;
+    {
+        auto words = r.line("enclosure");
+        s.enclosure.position_m = read_vector3(r, words);
+        for (int a = 0; a < 3; ++a) {
+            for (int b = 0; b < 3; ++b) s.enclosure.rotation(a, b) = r.num(words);
+        }
+        s.enclosure.velocity_m_s = read_vector3(r, words);
+        s.enclosure.angular_velocity_rad_s = read_vector3(r, words);
+    }
+    const long long particles = read_count(r, "particles");
+    for (long long i = 0; i < particles; ++i) {
+        auto words = r.line("p");
+        s.positions_m.push_back(read_vector3(r, words));
+        s.radii_m.push_back(r.num(words));
+        s.velocities_m_s.push_back(read_vector3(r, words));
+        s.angular_velocities_rad_s.push_back(read_vector3(r, words));
+    }
+    const long long pairs = read_count(r, "pairs");
+    for (long long i = 0; i < pairs; ++i) {
+        auto words = r.line("h");
+        dem::PairHistory h;
+        h.i = read_id(r, words);
+        h.j = read_id(r, words);
+        h.history_m = read_vector3(r, words);
+        s.pair_histories.push_back(h);
+    }
+    const long long walls = read_count(r, "walls");
+    for (long long i = 0; i < walls; ++i) {
+        auto words = r.line("w");
+        dem::WallHistory h;
+        h.particle = read_id(r, words);
+        h.wall = read_id(r, words);
+        h.history_m = read_vector3(r, words);
+        s.wall_histories.push_back(h);
+    }
+    const long long locked = read_count(r, "locked");
+    for (long long i = 0; i < locked; ++i) {
+        auto words = r.line("k");
+        dem::LockedParticle l;
+        l.id = read_id(r, words);
+        l.position_m = read_vector3(r, words);
+        s.locked.push_back(l);
+    }
+    {
+        auto words = r.line("clock");
+        s.released = r.integer(words) != 0;
+        s.time_s = r.num(words);
+        s.step = r.integer(words);
+    }
+    {
+        auto words = r.line("layers");
+        s.layers_up = read_vector3(r, words);
+    }
+    return s;
+}
+
+}  // namespace
+
 std::string serialize_checkpoint(const SweepCheckpoint& c) {
     Writer w;
     w.key(kMagic).end();
@@ -115,23 +242,14 @@ std::string serialize_checkpoint(const SweepCheckpoint& c) {
     w.key("next_amplitude").num(c.next_amplitude).end();
     write_vector(w, "q", c.state.q);
     write_vector(w, "q_dot", c.state.q_dot);
-    w.key("dampers").integer(static_cast<long long>(c.state.particles.size())).end();
-    for (std::size_t d = 0; d < c.state.particles.size(); ++d) {
+    w.key("attachments").integer(static_cast<long long>(c.state.attachments.size())).end();
+    for (std::size_t d = 0; d < c.state.attachments.size(); ++d) {
+        const auto& a = c.state.attachments[d];
+        w.key("attachment").text(a.dem ? "dem" : "none").end();
         w.key("load");
-        for (int k = 0; k < 6; ++k) {
-            w.num(c.state.damper_loads[d][k]);
-        }
+        for (int k = 0; k < 6; ++k) w.num(c.state.loads[d][k]);
         w.end();
-        const auto& p = c.state.particles[d];
-        w.key("particles").integer(static_cast<long long>(p.positions_m.size())).end();
-        for (std::size_t i = 0; i < p.positions_m.size(); ++i) {
-            w.key("p");
-            for (int k = 0; k < 3; ++k) w.num(p.positions_m[i][k]);
-            w.num(p.radii_m[i]);
-            for (int k = 0; k < 3; ++k) w.num(p.velocities_m_s[i][k]);
-            for (int k = 0; k < 3; ++k) w.num(p.angular_velocities_rad_s[i][k]);
-            w.end();
-        }
+        if (a.dem) write_dem_state(w, *a.dem);
     }
     w.key("rows").integer(static_cast<long long>(c.rows.size())).end();
     for (const auto& row : c.rows) {
@@ -140,7 +258,11 @@ std::string serialize_checkpoint(const SweepCheckpoint& c) {
             .num(row.frequency_hz)
             .integer(static_cast<long long>(row.values.size()));
         for (const auto& v : row.values) {
-            w.num(v.rms).num(v.amplitude.real()).num(v.amplitude.imag());
+            w.num(v.rms)
+                .num(v.amplitude.real())
+                .num(v.amplitude.imag())
+                .num(v.h2_ratio)
+                .num(v.h3_ratio);
         }
         w.text(row.arrangement).text(row.status).text(row.series.empty() ? "-" : row.series);
         w.end();
@@ -148,6 +270,10 @@ std::string serialize_checkpoint(const SweepCheckpoint& c) {
     w.key("log").integer(static_cast<long long>(c.control_log.size())).end();
     for (const auto& l : c.control_log) {
         w.key("l").text(l).end();
+    }
+    w.key("energy").integer(static_cast<long long>(c.energy_log.size())).end();
+    for (const auto& l : c.energy_log) {
+        w.key("e").text(l).end();
     }
     w.key("end").end();
     return w.str();
@@ -172,32 +298,21 @@ SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& fil
     }
     c.state.q = read_vector(r, "q");
     c.state.q_dot = read_vector(r, "q_dot");
-    auto dampers_line = r.line("dampers");
-    const long long dampers = r.integer(dampers_line);
-    for (long long d = 0; d < dampers; ++d) {
+    const long long attachments = read_count(r, "attachments");
+    for (long long d = 0; d < attachments; ++d) {
+        r.line("attachment");
+        const auto tab = r.current().find('\t');
+        const std::string kind = tab == std::string::npos ? "" : r.current().substr(tab + 1);
+        if (kind != "dem" && kind != "none") r.fail("unknown attachment '" + kind + "'");
         auto load = r.line("load");
         Eigen::Matrix<double, 6, 1> l;
         for (int k = 0; k < 6; ++k) l[k] = r.num(load);
-        c.state.damper_loads.push_back(l);
-        auto count_line = r.line("particles");
-        const long long count = r.integer(count_line);
-        dem::ParticleSet p;
-        for (long long i = 0; i < count; ++i) {
-            auto words = r.line("p");
-            Eigen::Vector3d x, v, w;
-            for (int k = 0; k < 3; ++k) x[k] = r.num(words);
-            const double radius = r.num(words);
-            for (int k = 0; k < 3; ++k) v[k] = r.num(words);
-            for (int k = 0; k < 3; ++k) w[k] = r.num(words);
-            p.positions_m.push_back(x);
-            p.radii_m.push_back(radius);
-            p.velocities_m_s.push_back(v);
-            p.angular_velocities_rad_s.push_back(w);
-        }
-        c.state.particles.push_back(std::move(p));
+        c.state.loads.push_back(l);
+        AttachmentState a;
+        if (kind == "dem") a.dem = read_dem_state(r);
+        c.state.attachments.push_back(std::move(a));
     }
-    auto rows_line = r.line("rows");
-    const long long rows = r.integer(rows_line);
+    const long long rows = read_count(r, "rows");
     for (long long i = 0; i < rows; ++i) {
         auto words = r.line("row");
         identification::PointRow row;
@@ -210,6 +325,8 @@ SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& fil
             const double re = r.num(words);
             const double im = r.num(words);
             v.amplitude = {re, im};
+            v.h2_ratio = r.num(words);
+            v.h3_ratio = r.num(words);
             row.values.push_back(v);
         }
         std::string rest;
@@ -226,12 +343,17 @@ SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& fil
         }
         c.rows.push_back(std::move(row));
     }
-    auto log_line = r.line("log");
-    const long long logs = r.integer(log_line);
+    const long long logs = read_count(r, "log");
     for (long long i = 0; i < logs; ++i) {
         r.line("l");
         const auto tab = r.current().find('\t');
         c.control_log.push_back(tab == std::string::npos ? "" : r.current().substr(tab + 1));
+    }
+    const long long energy = read_count(r, "energy");
+    for (long long i = 0; i < energy; ++i) {
+        r.line("e");
+        const auto tab = r.current().find('\t');
+        c.energy_log.push_back(tab == std::string::npos ? "" : r.current().substr(tab + 1));
     }
     r.line("end");
     return c;

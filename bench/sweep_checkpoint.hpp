@@ -19,9 +19,12 @@ struct SweepCheckpoint {
     SpecimenState state;          ///< the specimen after the last finished point
     std::vector<identification::PointRow> rows;  ///< the finished points
     std::vector<std::string> control_log;        ///< per point: how the controller got there
+    std::vector<std::string> energy_log;         ///< energy.csv rows of the finished points
 };
 
-/// Text form; every number as a hexadecimal float, so reading it back is exact.
+/// Text form; every number as a hexadecimal float, so reading it back is exact. A DEM
+/// damper's state is written whole (particles, tangential contact springs, lock, clock), so a
+/// resumed sweep continues exactly where the interrupted one was.
 std::string serialize_checkpoint(const SweepCheckpoint& checkpoint);
 
 /// Reads serialize_checkpoint()'s text; a damaged file throws std::runtime_error naming the

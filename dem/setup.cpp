@@ -314,10 +314,10 @@ double solid_fraction(const ParticleSet& particles, const Enclosure& enclosure) 
     return v / enclosure.volume();
 }
 
-void save_particles(const std::string& path, const ParticleSet& p) {
-    std::ofstream out(path);
-    if (!out) throw std::runtime_error("save_particles: cannot write " + path);
+std::string particles_text(const ParticleSet& p) {
+    std::ostringstream out;
     out << "x_m,y_m,z_m,radius_m,vx_m_s,vy_m_s,vz_m_s,wx_rad_s,wy_rad_s,wz_rad_s\n";
+    // 17 significant digits: every double reads back exactly.
     out << std::setprecision(17);
     for (std::size_t i = 0; i < p.positions_m.size(); ++i) {
         const Eigen::Vector3d v =
@@ -329,11 +329,11 @@ void save_particles(const std::string& path, const ParticleSet& p) {
         out << x.x() << ',' << x.y() << ',' << x.z() << ',' << p.radii_m[i] << ',' << v.x() << ','
             << v.y() << ',' << v.z() << ',' << w.x() << ',' << w.y() << ',' << w.z() << '\n';
     }
+    return out.str();
 }
 
-ParticleSet load_particles(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error("load_particles: cannot read " + path);
+ParticleSet parse_particles_text(const std::string& text, const std::string& name) {
+    std::istringstream in(text);
     ParticleSet p;
     std::string line;
     std::getline(in, line);
@@ -346,7 +346,7 @@ ParticleSet load_particles(const std::string& path) {
         double a[10];
         for (double& x : a) {
             if (!(ls >> x)) {
-                throw std::runtime_error(path + ":" + std::to_string(lineno) +
+                throw std::runtime_error(name + ":" + std::to_string(lineno) +
                                          ": expected 10 numbers");
             }
         }
@@ -358,26 +358,65 @@ ParticleSet load_particles(const std::string& path) {
     return p;
 }
 
-void write_vtk(const std::string& path, const ParticleState& s) {
+void save_particles(const std::string& path, const ParticleSet& p) {
     std::ofstream out(path);
-    if (!out) throw std::runtime_error("write_vtk: cannot write " + path);
-    const std::size_t n = s.size();
+    if (!out) throw std::runtime_error("save_particles: cannot write " + path);
+    out << particles_text(p);
+}
+
+ParticleSet load_particles(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error("load_particles: cannot read " + path);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return parse_particles_text(text.str(), path);
+}
+
+namespace {
+
+/// Legacy VTK polydata of spheres: points, radius, id, locked flag, velocity, spin.
+std::string vtk_polydata(const std::vector<Eigen::Vector3d>& x, const std::vector<double>& radius,
+                         const std::vector<std::uint8_t>& locked,
+                         const std::vector<Eigen::Vector3d>& v,
+                         const std::vector<Eigen::Vector3d>& w) {
+    std::ostringstream out;
+    const std::size_t n = x.size();
     out << "# vtk DataFile Version 3.0\nShakerBench DEM particles\nASCII\nDATASET POLYDATA\n";
     out << std::setprecision(10);
     out << "POINTS " << n << " double\n";
-    for (const auto& x : s.x) out << x.x() << ' ' << x.y() << ' ' << x.z() << '\n';
+    for (const auto& p : x) out << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
     out << "VERTICES " << n << ' ' << 2 * n << '\n';
     for (std::size_t i = 0; i < n; ++i) out << "1 " << i << '\n';
     out << "POINT_DATA " << n << "\nSCALARS radius double 1\nLOOKUP_TABLE default\n";
-    for (double r : s.radius) out << r << '\n';
+    for (double r : radius) out << r << '\n';
     out << "SCALARS id int 1\nLOOKUP_TABLE default\n";
     for (std::size_t i = 0; i < n; ++i) out << i << '\n';
     out << "SCALARS locked int 1\nLOOKUP_TABLE default\n";
-    for (auto l : s.locked) out << static_cast<int>(l) << '\n';
+    for (std::size_t i = 0; i < n; ++i) out << (i < locked.size() ? int{locked[i]} : 0) << '\n';
     out << "VECTORS velocity double\n";
-    for (const auto& v : s.v) out << v.x() << ' ' << v.y() << ' ' << v.z() << '\n';
+    for (std::size_t i = 0; i < n; ++i) {
+        const Eigen::Vector3d u = i < v.size() ? v[i] : Eigen::Vector3d::Zero();
+        out << u.x() << ' ' << u.y() << ' ' << u.z() << '\n';
+    }
     out << "VECTORS angular_velocity double\n";
-    for (const auto& w : s.w) out << w.x() << ' ' << w.y() << ' ' << w.z() << '\n';
+    for (std::size_t i = 0; i < n; ++i) {
+        const Eigen::Vector3d u = i < w.size() ? w[i] : Eigen::Vector3d::Zero();
+        out << u.x() << ' ' << u.y() << ' ' << u.z() << '\n';
+    }
+    return out.str();
+}
+
+}  // namespace
+
+std::string vtk_text(const ParticleSet& local) {
+    return vtk_polydata(local.positions_m, local.radii_m, {}, local.velocities_m_s,
+                        local.angular_velocities_rad_s);
+}
+
+void write_vtk(const std::string& path, const ParticleState& s) {
+    std::ofstream out(path);
+    if (!out) throw std::runtime_error("write_vtk: cannot write " + path);
+    out << vtk_polydata(s.x, s.radius, s.locked, s.v, s.w);
 }
 
 Violations AutoStiffnessInput::validate() const {

@@ -88,6 +88,13 @@ double solid_fraction(const ParticleSet& particles, const Enclosure& enclosure);
 /// CSV: "x_m,y_m,z_m,radius_m,vx_m_s,vy_m_s,vz_m_s,wx,wy,wz" with 17 significant digits.
 void save_particles(const std::string& path, const ParticleSet& particles);
 ParticleSet load_particles(const std::string& path);
+/// The same CSV as text (17 significant digits: parse_particles_text() gives the doubles back
+/// exactly); `name` stands for the file in messages.
+std::string particles_text(const ParticleSet& particles);
+ParticleSet parse_particles_text(const std::string& text, const std::string& name);
+/// Legacy VTK polydata of a bed in its enclosure frame (velocities relative to the
+/// enclosure), for ParaView.
+std::string vtk_text(const ParticleSet& local);
 
 /// Legacy ASCII VTK polydata (points with radius, velocity, angular velocity, id, locked).
 void write_vtk(const std::string& path, const ParticleState& state);

@@ -61,5 +61,7 @@ void write_damping_csv(const std::filesystem::path& file, const std::vector<Damp
 
 /// Writes a time history CSV.
 void write_time_history_csv(const std::filesystem::path& file, const TimeHistory& history);
+/// The same as text.
+std::string time_history_csv_text(const TimeHistory& history);
 
 }  // namespace sb::identification

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <sstream>
 
 #include "identification/csv_table.hpp"
 #include "identification/file_error.hpp"
@@ -73,9 +74,8 @@ TimeHistory read_time_history_csv(const std::filesystem::path& path,
     return h;
 }
 
-void write_time_history_csv(const std::filesystem::path& path, const TimeHistory& h) {
-    std::ofstream f(path, std::ios::binary);
-    if (!f) throw FileError(path.string(), 0, 0, "cannot open the file for writing");
+std::string time_history_csv_text(const TimeHistory& h) {
+    std::ostringstream f;
     f << "time_s";
     for (const auto& c : h.channels) f << ',' << c;
     f << '\n';
@@ -84,6 +84,13 @@ void write_time_history_csv(const std::filesystem::path& path, const TimeHistory
         for (const auto& col : h.columns) f << ',' << detail::exact_text(col[i]);
         f << '\n';
     }
+    return f.str();
+}
+
+void write_time_history_csv(const std::filesystem::path& path, const TimeHistory& h) {
+    std::ofstream f(path, std::ios::binary);
+    if (!f) throw FileError(path.string(), 0, 0, "cannot open the file for writing");
+    f << time_history_csv_text(h);
 }
 
 }  // namespace sb::identification

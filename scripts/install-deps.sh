@@ -3,10 +3,12 @@
 # Usage: scripts/install-deps.sh [--test]   (--test adds what the test suite needs)
 set -euo pipefail
 
+# gnuplot draws the campaign's SVG plots: the main job needs it as much as the tests do.
 packages=(build-essential cmake pkg-config libeigen3-dev libfftw3-dev libnlopt-cxx-dev
-          libtomlplusplus-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev)
+          libtomlplusplus-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
+          gnuplot-nox)
 if [[ "${1:-}" == "--test" ]]; then
-    packages+=(clang-format lammps gnuplot-nox time)
+    packages+=(clang-format lammps time)
 fi
 
 missing=()

@@ -53,10 +53,12 @@ Beam paper_beam(const std::string& oscillation) {
     return b;
 }
 
-/// A damper whose particles (enclosure frame) are locked to the enclosure.
-MountedDamper locked_damper(const std::string& point, const Eigen::Vector3d& offset_m,
-                            const Eigen::Matrix3d& rotation, const Eigen::Vector3d& gravity,
-                            const std::vector<Eigen::Vector3d>& local_positions_m) {
+/// A damper at `point` of `beam` whose particles (enclosure frame) are locked to the
+/// enclosure.
+Attachment locked_damper(const Beam& beam, const std::string& point,
+                         const Eigen::Vector3d& offset_m, const Eigen::Matrix3d& rotation,
+                         const Eigen::Vector3d& gravity,
+                         const std::vector<Eigen::Vector3d>& local_positions_m) {
     dem::SolverOptions options;
     options.particles.count = static_cast<int>(local_positions_m.size());
     options.particles.diameter_m = 2.0 * kRadius;
@@ -72,13 +74,8 @@ MountedDamper locked_damper(const std::string& point, const Eigen::Vector3d& off
         set.velocities_m_s.push_back(Eigen::Vector3d::Zero());
         set.angular_velocities_rad_s.push_back(Eigen::Vector3d::Zero());
     }
-    MountedDamper d;
-    d.name = point + " damper";
-    d.point = point;
-    d.mount_rotation = rotation;
-    d.offset_m = offset_m;
-    d.solver = std::make_unique<dem::Solver>(options, set);
-    return d;
+    return {point + " damper", point,
+            DemDamper(options, rotation, offset_m, set, beam.model.point(point).position_m)};
 }
 
 /// Four spheres clear of each other and of the walls, symmetric about the axis (no
@@ -97,9 +94,9 @@ TEST(CoupledSpecimen, TheWallForceIsTheBedsWeightAndItsMomentIsAboutThePoint) {
     const Eigen::Vector3d gravity(0.0, 0.0, -kG);
     const Eigen::Vector3d offset(0.002, -0.003, 0.0115);
     const Eigen::Vector3d local(0.004, 0.003, 0.005);
-    std::vector<MountedDamper> dampers;
+    std::vector<Attachment> dampers;
     dampers.push_back(
-        locked_damper("damper", offset, Eigen::Matrix3d::Identity(), gravity, {local}));
+        locked_damper(beam, "damper", offset, Eigen::Matrix3d::Identity(), gravity, {local}));
     CoupledSpecimen specimen(beam.model, beam.basis, beam.spec.excitation, std::move(dampers),
                              {"damper"}, kDtMax);
     specimen.set_frequency(6.0);
@@ -107,17 +104,18 @@ TEST(CoupledSpecimen, TheWallForceIsTheBedsWeightAndItsMomentIsAboutThePoint) {
     std::vector<double> values;
     for (int k = 0; k < 50; ++k) specimen.step(0.0, values);
 
-    const auto load = specimen.state().damper_loads.front();
+    const auto load = specimen.state().loads.front();
     const Eigen::Vector3d weight = sphere_mass() * gravity;
     // The bed barely moves (static start); the first coupled step, whose lock force is not
     // yet there, kicks the beam by m g dt: the bed's inertia stays below 1e-4 of its weight.
     constexpr double kQuasiStatic = 1e-4;
     EXPECT_NEAR((load.head<3>() - weight).norm(), 0.0, kQuasiStatic * weight.norm())
         << load.head<3>().transpose();
-    const auto& enclosure = specimen.dampers().front().solver->enclosure_state();
+    const dem::Solver& solver = *dem_solver(specimen.attachments().front());
+    const auto& enclosure = solver.enclosure_state();
     const Eigen::Vector3d point =
         enclosure.position_m - enclosure.rotation * offset;  // mount rotation is the identity
-    const Eigen::Vector3d particle = specimen.dampers().front().solver->particles().x.front();
+    const Eigen::Vector3d particle = solver.particles().x.front();
     const Eigen::Vector3d expected = (particle - point).cross(weight);
     EXPECT_NEAR((load.tail<3>() - expected).norm(), 0.0, kQuasiStatic * expected.norm())
         << load.tail<3>().transpose() << " vs " << expected.transpose();
@@ -130,8 +128,8 @@ TEST(CoupledSpecimen, GravityOfTheArrangementReachesTheStructureAsTheBedsWeight)
     // loads the structure along -y, and its weight bends nothing the shaker drives.
     const Beam beam = paper_beam("horizontal");
     const Eigen::Vector3d gravity(0.0, -kG, 0.0);
-    std::vector<MountedDamper> dampers;
-    dampers.push_back(locked_damper("damper", {0.0, 0.0, 0.0115}, Eigen::Matrix3d::Identity(),
+    std::vector<Attachment> dampers;
+    dampers.push_back(locked_damper(beam, "damper", {0.0, 0.0, 0.0115}, Eigen::Matrix3d::Identity(),
                                     gravity, four_spheres(0.005)));
     CoupledSpecimen specimen(beam.model, beam.basis, beam.spec.excitation, std::move(dampers),
                              {"damper"}, kDtMax);
@@ -143,7 +141,7 @@ TEST(CoupledSpecimen, GravityOfTheArrangementReachesTheStructureAsTheBedsWeight)
         specimen.step(0.0, values);
         largest_z = std::max(largest_z, std::abs(values[1]));
     }
-    const auto load = specimen.state().damper_loads.front();
+    const auto load = specimen.state().loads.front();
     // As above: the first step's kick leaves the bed's inertia below 1e-4 of its weight.
     constexpr double kQuasiStatic = 1e-4;
     const double weight = 4.0 * sphere_mass() * kG;
@@ -171,8 +169,8 @@ std::vector<double> rms_after_update(bool scale, double a1, double a2, int settl
     // Vertical oscillation: the bed's weight deflects the beam statically along the driven
     // direction, so the scaling must keep the static part (the mean) where it is.
     const Beam beam = paper_beam("vertical");
-    std::vector<MountedDamper> dampers;
-    dampers.push_back(locked_damper("damper", {0.0, 0.0, 0.0115}, Eigen::Matrix3d::Identity(),
+    std::vector<Attachment> dampers;
+    dampers.push_back(locked_damper(beam, "damper", {0.0, 0.0, 0.0115}, Eigen::Matrix3d::Identity(),
                                     Eigen::Vector3d(0.0, 0.0, -kG), four_spheres(0.005)));
     CoupledSpecimen specimen(beam.model, beam.basis, beam.spec.excitation, std::move(dampers),
                              {"damper"}, kDtMax);
@@ -245,10 +243,10 @@ TEST(CoupledSpecimen, SeveralLockedDampersActLikeTheirMassesOnTheStructure) {
     }
     ASSERT_GT(f1, 0.0);
 
-    std::vector<MountedDamper> dampers;
-    dampers.push_back(locked_damper("damper", o1, identity, gravity, beds));
-    dampers.push_back(locked_damper("damper", o2, r45, gravity, beds));
-    dampers.push_back(locked_damper("acc4", o3, identity, gravity, beds));
+    std::vector<Attachment> dampers;
+    dampers.push_back(locked_damper(beam, "damper", o1, identity, gravity, beds));
+    dampers.push_back(locked_damper(beam, "damper", o2, r45, gravity, beds));
+    dampers.push_back(locked_damper(beam, "acc4", o3, identity, gravity, beds));
     CoupledSpecimen specimen(beam.model, beam.basis, beam.spec.excitation, std::move(dampers),
                              {"damper"}, kDtMax);
     specimen.set_start_model(ref_model, ref_basis);
@@ -275,6 +273,71 @@ TEST(CoupledSpecimen, SeveralLockedDampersActLikeTheirMassesOnTheStructure) {
     const auto other =
         structure::modal_accelerance(two_model, two_basis, "damper", z, "shaker", z, f);
     EXPECT_GT(std::abs(std::abs(other) / std::abs(exact) - 1.0), 10.0 * kCouplingTolerance);
+}
+
+TEST(CoupledSpecimen, AStateCarriesContactSpringsAndTheLockClockFromPointToPoint) {
+    // Horizontal oscillation: four spheres lie on the cylinder's side (gravity along -y) and
+    // slide along the axis as the beam moves; with the history-spring law every contact keeps
+    // a tangential spring. Two of them are locked until 1.5 periods.
+    const Beam beam = paper_beam("horizontal");
+    dem::SolverOptions options;
+    options.particles.count = 4;
+    options.particles.diameter_m = 2.0 * kRadius;
+    options.particles.material.density_kg_m3 = kDensity;
+    options.contact.normal_stiffness = 1e5;
+    options.contact.tangential = dem::TangentialLaw::coulomb_spring;
+    options.gravity_m_s2 = Eigen::Vector3d(0.0, -kG, 0.0);
+    options.track_energy = false;
+    constexpr double kFrequencyHz = 6.3;
+    options.lock.particle_ids = {2, 3};
+    options.lock.release_time_s = 1.5 / kFrequencyHz;
+    dem::ParticleSet bed;
+    // On the side wall (inner radius 9.5 mm), clear of each other and of the floor.
+    for (const Eigen::Vector3d& x :
+         {Eigen::Vector3d(-3e-3, -7.4e-3, 5e-3), Eigen::Vector3d(3e-3, -7.4e-3, 5e-3),
+          Eigen::Vector3d(-3e-3, -7.4e-3, 12e-3), Eigen::Vector3d(3e-3, -7.4e-3, 12e-3)}) {
+        bed.positions_m.push_back(x);
+        bed.radii_m.push_back(kRadius);
+        bed.velocities_m_s.push_back(Eigen::Vector3d::Zero());
+        bed.angular_velocities_rad_s.push_back(Eigen::Vector3d::Zero());
+    }
+    std::vector<Attachment> attachments;
+    attachments.push_back({"pd", "damper",
+                           DemDamper(options, Eigen::Matrix3d::Identity(), {0.0, 0.0, 0.0115}, bed,
+                                     beam.model.point("damper").position_m)});
+    CoupledSpecimen specimen(beam.model, beam.basis, beam.spec.excitation, std::move(attachments),
+                             {"damper"}, kDtMax);
+    specimen.set_frequency(kFrequencyHz);
+    // Gently: the spheres stay on the wall, their springs loaded by the sliding motion.
+    constexpr double kAmplitudeN = 0.02;
+    specimen.start_from_linear_steady_state(kAmplitudeN, 0.0);
+    SpecimenPlant plant(specimen, 0);
+    plant.begin_point();
+    plant.run_period(kAmplitudeN, kFrequencyHz);
+
+    // The end of a point: its state, and the next point restored from it.
+    const SpecimenState first = specimen.state();
+    const auto& dem_state = *first.attachments.front().dem;
+    ASSERT_FALSE(dem_state.wall_histories.empty());
+    double largest_spring_m = 0.0;
+    for (const auto& h : dem_state.wall_histories) {
+        largest_spring_m = std::max(largest_spring_m, h.history_m.norm());
+    }
+    EXPECT_GT(largest_spring_m, 0.0);
+    EXPECT_EQ(dem_state.locked.size(), 2u);
+    specimen.restore(first);
+    const SpecimenState again = specimen.state();
+    const auto& kept = *again.attachments.front().dem;
+    ASSERT_EQ(kept.wall_histories.size(), dem_state.wall_histories.size());
+    for (std::size_t k = 0; k < kept.wall_histories.size(); ++k) {
+        EXPECT_EQ(kept.wall_histories[k].history_m, dem_state.wall_histories[k].history_m);
+    }
+    EXPECT_EQ(kept.time_s, dem_state.time_s);
+
+    // The lock's clock runs on: released 1.5 periods after the start, not after the restore.
+    plant.begin_point();
+    plant.run_period(kAmplitudeN, kFrequencyHz);
+    EXPECT_EQ(dem_solver(specimen.attachments().front())->locked_count(), 0);
 }
 
 }  // namespace

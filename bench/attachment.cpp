@@ -1,0 +1,105 @@
+// Attachments: the DEM damper and the rigid particles.
+#include "bench/attachment.hpp"
+
+#include "dem/setup.hpp"
+
+namespace sb::bench {
+
+DemDamper::DemDamper(const dem::SolverOptions& options, const Eigen::Matrix3d& mount_rotation,
+                     const Eigen::Vector3d& offset_m, const dem::ParticleSet& bed,
+                     const Eigen::Vector3d& rest_position_m)
+    : options_(options), mount_rotation_(mount_rotation), offset_m_(offset_m) {
+    PointMotion rest;
+    rest.position_m = rest_position_m;
+    solver_ = std::make_unique<dem::Solver>(options_, bed, enclosure(rest));
+}
+
+dem::EnclosureState DemDamper::enclosure(const PointMotion& motion) const {
+    const Eigen::Vector3d r = motion.rotation * offset_m_;
+    dem::EnclosureState e;
+    e.position_m = motion.position_m + r;
+    e.rotation = motion.rotation * mount_rotation_;
+    e.velocity_m_s = motion.velocity_m_s + motion.angular_velocity_rad_s.cross(r);
+    e.angular_velocity_rad_s = motion.angular_velocity_rad_s;
+    return e;
+}
+
+PointLoad DemDamper::step(const PointMotion& motion, double dt_s) {
+    solver_->set_enclosure_state(enclosure(motion));
+    solver_->step(dt_s);
+    // The wall moment is about the enclosure origin; moved to the point: M + r x F.
+    const Eigen::Vector3d r = motion.rotation * offset_m_;
+    const Eigen::Vector3d force = solver_->wall_force();
+    return {force, solver_->wall_moment() + r.cross(force)};
+}
+
+PointLoad DemDamper::weight() const {
+    // The bed's centre of gravity from its enclosure-frame positions and the mounting (not
+    // from the solver's world positions, which sit wherever its last pose was).
+    const dem::ParticleSet local = solver_->local_snapshot();
+    const auto& particles = solver_->particles();
+    double mass_kg = 0.0;
+    Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
+    for (std::size_t k = 0; k < particles.size(); ++k) {
+        const double m = 1.0 / particles.inv_mass[k];
+        mass_kg += m;
+        first_moment += m * local.positions_m[k];
+    }
+    const Eigen::Vector3d w = mass_kg * options_.gravity_m_s2;
+    const Eigen::Vector3d arm = offset_m_ + mount_rotation_ * (first_moment / mass_kg);
+    return {w, arm.cross(w)};
+}
+
+AttachmentState DemDamper::state() const { return {solver_->state()}; }
+
+AttachmentState DemDamper::state_at(const PointMotion& motion) {
+    // The pose the next step would set anyway: the state is then relative to it.
+    solver_->set_enclosure_state(enclosure(motion));
+    return {solver_->state()};
+}
+
+void DemDamper::restore(const AttachmentState& state) {
+    // At the state's own pose the solver continues bitwise as if never interrupted.
+    solver_ = std::make_unique<dem::Solver>(options_, *state.dem, state.dem->enclosure);
+}
+
+void DemDamper::restore_at(const AttachmentState& state, const PointMotion& motion) {
+    solver_ = std::make_unique<dem::Solver>(options_, *state.dem, enclosure(motion));
+}
+
+PointLoad step(Attachment& attachment, const PointMotion& motion, double dt_s) {
+    return std::visit([&](auto& m) { return m.step(motion, dt_s); }, attachment.model);
+}
+
+PointLoad weight(const Attachment& attachment) {
+    return std::visit([](const auto& m) { return m.weight(); }, attachment.model);
+}
+
+AttachmentState state(const Attachment& attachment) {
+    return std::visit([](const auto& m) { return m.state(); }, attachment.model);
+}
+
+AttachmentState state_at(Attachment& attachment, const PointMotion& motion) {
+    return std::visit([&](auto& m) { return m.state_at(motion); }, attachment.model);
+}
+
+void restore(Attachment& attachment, const AttachmentState& s) {
+    std::visit([&](auto& m) { m.restore(s); }, attachment.model);
+}
+
+void restore_at(Attachment& attachment, const AttachmentState& s, const PointMotion& motion) {
+    std::visit([&](auto& m) { m.restore_at(s, motion); }, attachment.model);
+}
+
+const dem::Solver* dem_solver(const Attachment& attachment) {
+    if (const auto* d = std::get_if<DemDamper>(&attachment.model)) return &d->solver();
+    return nullptr;
+}
+
+std::optional<std::string> bed_vtk_text(const Attachment& attachment) {
+    const dem::Solver* solver = dem_solver(attachment);
+    if (solver == nullptr) return std::nullopt;
+    return dem::vtk_text(dem::local_particles(solver->state()));
+}
+
+}  // namespace sb::bench

@@ -1,0 +1,91 @@
+// Where a campaign keeps what it has finished: every sweep's checkpoint, the settled beds and
+// the per-point files (series, bed snapshots). Files for the CLI, memory for callers that
+// run campaigns in a loop (calibration), none when nothing needs to survive the call.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sb::bench {
+
+/// A store is opened for one config (its hash) and then read and written by the sweeps,
+/// possibly from several threads at once (each sweep its own keys). Texts are stored as
+/// they are: a checkpoint and a bed are always read back through their text form, so a
+/// resumed sweep repeats the arithmetic of an uninterrupted one.
+class CheckpointStore {
+  public:
+    virtual ~CheckpointStore() = default;
+
+    /// Before anything runs: with `restart`, forgets everything stored; otherwise refuses
+    /// (config::ConfigException naming both hashes, nothing simulated) to resume what a config
+    /// with another hash left.
+    virtual void open(const std::string& config_hash, bool restart) = 0;
+
+    /// The checkpoint text of a sweep, if one was saved.
+    virtual std::optional<std::string> load_checkpoint(const std::string& sweep_key) = 0;
+    virtual void save_checkpoint(const std::string& sweep_key, const std::string& text) = 0;
+
+    /// A settled bed (CSV text), by sweep and damper.
+    virtual std::optional<std::string> load_bed(const std::string& bed_key) = 0;
+    virtual void save_bed(const std::string& bed_key, const std::string& text) = 0;
+
+    /// A file a point produces (a series, a bed snapshot), by its path relative to the
+    /// recording directory ("series/H-0_1g_3.csv").
+    virtual void save_file(const std::string& relative_path, const std::string& text) = 0;
+};
+
+/// Checkpoints in DIR/checkpoints/<sweep>.txt, beds in DIR/settled/<bed>_<hash>.csv, files
+/// under DIR: the recording directory the CLI writes. Every file goes through a rename, so a
+/// kill never leaves half of one.
+class FileCheckpointStore : public CheckpointStore {
+  public:
+    explicit FileCheckpointStore(std::filesystem::path directory);
+    void open(const std::string& config_hash, bool restart) override;
+    std::optional<std::string> load_checkpoint(const std::string& sweep_key) override;
+    void save_checkpoint(const std::string& sweep_key, const std::string& text) override;
+    std::optional<std::string> load_bed(const std::string& bed_key) override;
+    void save_bed(const std::string& bed_key, const std::string& text) override;
+    void save_file(const std::string& relative_path, const std::string& text) override;
+    [[nodiscard]] const std::filesystem::path& directory() const { return directory_; }
+
+  private:
+    std::filesystem::path directory_;
+    std::string hash_;
+};
+
+/// Everything in memory: a second run with the same store resumes every finished sweep.
+class MemoryCheckpointStore : public CheckpointStore {
+  public:
+    void open(const std::string& config_hash, bool restart) override;
+    std::optional<std::string> load_checkpoint(const std::string& sweep_key) override;
+    void save_checkpoint(const std::string& sweep_key, const std::string& text) override;
+    std::optional<std::string> load_bed(const std::string& bed_key) override;
+    void save_bed(const std::string& bed_key, const std::string& text) override;
+    void save_file(const std::string& relative_path, const std::string& text) override;
+    /// The files the points produced, by relative path.
+    [[nodiscard]] std::map<std::string, std::string> files() const;
+
+  private:
+    mutable std::mutex mutex_;
+    std::string hash_;
+    std::map<std::string, std::string> checkpoints_;
+    std::map<std::string, std::string> beds_;
+    std::map<std::string, std::string> files_;
+};
+
+/// Keeps nothing: every call simulates everything.
+class NoCheckpointStore : public CheckpointStore {
+  public:
+    void open(const std::string&, bool) override {}
+    std::optional<std::string> load_checkpoint(const std::string&) override { return {}; }
+    void save_checkpoint(const std::string&, const std::string&) override {}
+    std::optional<std::string> load_bed(const std::string&) override { return {}; }
+    void save_bed(const std::string&, const std::string&) override {}
+    void save_file(const std::string&, const std::string&) override {}
+};
+
+}  // namespace sb::bench

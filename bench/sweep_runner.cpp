@@ -1,0 +1,367 @@
+// One sweep: the specimen with its attachments, the controller point by point, checkpoints.
+#include "bench/sweep_runner.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <iomanip>
+#include <optional>
+#include <sstream>
+
+#include "bench/arrangement.hpp"
+#include "bench/attachment.hpp"
+#include "bench/coupled_specimen.hpp"
+#include "bench/driven_mode.hpp"
+#include "bench/linear_estimate.hpp"
+#include "bench/specimen_plant.hpp"
+#include "bench/sweep_checkpoint.hpp"
+#include "control/controller.hpp"
+#include "core/units.hpp"
+#include "dem/setup.hpp"
+#include "identification/recording_io.hpp"
+#include "structure/frf.hpp"
+
+namespace sb::bench {
+namespace {
+
+std::string number_text(double v) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.9g", v);
+    return buffer;
+}
+
+std::string format_duration(double seconds) {
+    const long s = std::lround(seconds);
+    std::ostringstream out;
+    if (s >= 3600) out << s / 3600 << "h";
+    if (s >= 60) out << (s % 3600) / 60 << "m";
+    out << s % 60 << "s";
+    return out.str();
+}
+
+/// The settled bed of a damper in its mounting (gravity in the enclosure frame), from the
+/// store when it holds one; always read back from its text (17 significant digits, exact), so
+/// a fresh and a resumed run start from the same numbers.
+dem::ParticleSet settled_bed(const DamperSpec& damper, double stiffness,
+                             const Eigen::Matrix3d& rotation, const Eigen::Vector3d& gravity,
+                             std::uint64_t seed, CheckpointStore& store, const std::string& key) {
+    std::optional<std::string> text = store.load_bed(key);
+    if (!text) {
+        dem::SolverOptions local = damper.solver_options(stiffness);
+        local.gravity_m_s2 = rotation.transpose() * gravity;
+        local.track_energy = false;
+        dem::ParticleSet settled;
+        if (damper.fill == DamperSpec::Fill::pour) {
+            settled = dem::pour(local, seed, damper.settle);
+        } else {
+            dem::ParticleSet filled;
+            try {
+                filled = dem::fill_random(local, seed);
+            } catch (const std::runtime_error& e) {
+                throw std::runtime_error("damper " + damper.name + ": " + e.what() +
+                                         " (set dampers." + damper.name +
+                                         ".settle.fill = \"pour\")");
+            }
+            settled = dem::settle(local, filled, damper.settle);
+        }
+        text = dem::particles_text(settled);
+        store.save_bed(key, *text);
+    }
+    return dem::parse_particles_text(*text, key);
+}
+
+std::string control_log_line(const SweepTask& task, const control::PointResult& r) {
+    std::string amplitudes;
+    for (double a : r.amplitudes_tried) {
+        amplitudes += (amplitudes.empty() ? "" : ";") + number_text(a);
+    }
+    std::string rms;
+    for (double v : r.rms_per_period) {
+        rms += (rms.empty() ? "" : ";") + number_text(v);
+    }
+    return task.prepared->arrangement.name + "," + number_text(task.level_g) + "," +
+           number_text(r.frequency_hz) + "," + std::string(control::to_string(r.status)) + "," +
+           std::to_string(r.periods_simulated) + "," + std::to_string(r.updates) + "," +
+           number_text(r.amplitude_final) + "," + number_text(r.rms_final) + "," + amplitudes +
+           "," + rms;
+}
+
+/// energy.csv rows of a point: per DEM damper, the energies per period over the steady
+/// window (bench/campaign_output.cpp writes the header).
+std::vector<std::string> energy_lines(const SweepTask& task, double frequency_hz,
+                                      const std::vector<std::string>& damper_names,
+                                      const std::vector<std::optional<PeriodEnergy>>& energy) {
+    std::vector<std::string> lines;
+    for (std::size_t d = 0; d < energy.size(); ++d) {
+        if (!energy[d]) continue;
+        const PeriodEnergy& e = *energy[d];
+        std::string line = task.prepared->arrangement.name + "," + number_text(task.level_g) + "," +
+                           number_text(frequency_hz) + "," + damper_names[d];
+        for (double v :
+             {e.wall_work_j, e.normal_damping_j, e.friction_j, e.rolling_j, e.kinetic_j}) {
+            line += "," + number_text(v);
+        }
+        for (double v : e.layer_dissipation_j) line += "," + number_text(v);
+        lines.push_back(std::move(line));
+    }
+    return lines;
+}
+
+/// The steady window of a point as a time history (series/<key>_<index>.csv).
+std::string series_text(const CoupledSpecimen& specimen, const SpecimenPlant& plant,
+                        const control::PointResult& result) {
+    identification::TimeHistory history;
+    history.channels = specimen.channel_names();
+    history.columns.resize(history.channels.size());
+    const double period_s = 1.0 / specimen.frequency_hz();
+    for (int p = result.window_begin; p < result.window_end; ++p) {
+        const auto& period = plant.periods()[static_cast<std::size_t>(p)];
+        const std::size_t samples = period.series.front().size();
+        for (std::size_t k = 0; k < samples; ++k) {
+            history.time_s.push_back((p - result.window_begin) * period_s +
+                                     (static_cast<double>(k) + 1.0) * period_s /
+                                         static_cast<double>(samples));
+            for (std::size_t c = 0; c < history.channels.size(); ++c) {
+                history.columns[c].push_back(period.series[c][k]);
+            }
+        }
+    }
+    return identification::time_history_csv_text(history);
+}
+
+/// |control / reference| of a row: the accelerance (or transmissibility) magnitude.
+double response_ratio(const identification::PointRow& row) {
+    return std::abs(row.values[1].amplitude / row.values[0].amplitude);
+}
+
+}  // namespace
+
+CampaignProgress::CampaignProgress(std::function<void(const std::string&)> sink, int points_total)
+    : sink_(std::move(sink)),
+      points_total_(points_total),
+      start_(std::chrono::steady_clock::now()) {}
+
+void CampaignProgress::point_started(const SweepTask& task, int index, double frequency_hz) {
+    if (!sink_) return;
+    std::ostringstream out;
+    out << "  start " << task.prepared->arrangement.name << ' ' << number_text(task.level_g)
+        << " g " << std::fixed << std::setprecision(3) << frequency_hz << " Hz (frequency "
+        << index + 1 << " of " << task.frequencies_hz.size() << ")";
+    std::lock_guard<std::mutex> lock(mutex_);
+    sink_(out.str());
+}
+
+void CampaignProgress::points_resumed(int count) { points_done_ += count; }
+
+void CampaignProgress::point_finished(const SweepTask& task, double frequency_hz,
+                                      const control::PointResult& result) {
+    const int done = ++points_done_;
+    const int simulated = ++points_simulated_;
+    periods_ += result.periods_simulated;
+    if (!sink_) return;
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double eta = elapsed / simulated * (points_total_ - done);
+    std::ostringstream out;
+    out << '[' << done << '/' << points_total_ << "] " << task.prepared->arrangement.name << ' '
+        << number_text(task.level_g) << " g " << std::fixed << std::setprecision(3) << frequency_hz
+        << " Hz: " << control::to_string(result.status) << " after " << result.periods_simulated
+        << " periods (" << result.updates << " updates), " << std::setprecision(1)
+        << static_cast<double>(periods_.load()) / std::max(elapsed, 1e-9) << " periods/s, ETA "
+        << format_duration(eta);
+    std::lock_guard<std::mutex> lock(mutex_);
+    sink_(out.str());
+}
+
+SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
+                      const std::string& config_hash, CheckpointStore& store,
+                      CampaignProgress& progress) {
+    const CampaignSpec& campaign = config.campaign;
+    const PreparedArrangement& prepared = *task.prepared;
+    const Eigen::Vector3d gravity = arrangement_gravity(prepared.arrangement);
+    const auto& frequencies = task.frequencies_hz;
+
+    SweepResult out;
+    out.key = task.key;
+    out.arrangement = prepared.arrangement.name;
+    out.level_g = task.level_g;
+    out.first_mode_hz = prepared.first_mode_hz;
+    out.frequencies_hz = frequencies;
+
+    // The attachments at their points: DEM dampers with their settled beds, rigid particles.
+    std::vector<Attachment> attachments;
+    std::vector<std::string> damper_names;
+    const double lowest_hz = *std::min_element(frequencies.begin(), frequencies.end());
+    double dt_max = 1.0 / (256.0 * lowest_hz);
+    const bool energy = campaign.output.energy;
+    for (const DamperSpec& damper : campaign.dampers) {
+        const DamperMounting mounting = damper_mounting(prepared.arrangement, damper);
+        damper_names.push_back(damper.name);
+        if (damper.model == DamperSpec::Model::rigid) {
+            // Its mass is part of the arrangement's structure (arrangement_structure).
+            attachments.push_back({damper.name, damper.point, RigidParticles{}});
+            continue;
+        }
+        const dem::ExcitationContact chosen = dem::choose_contact(
+            damper.particles, damper.enclosure, damper.contact.normal,
+            damper.contact.particle_particle.restitution, damper.contact.normal_stiffness,
+            damper.contact.max_overlap_fraction, damper.contact.time_step_fraction,
+            std::sqrt(2.0) * g_to_m_s2(task.level_g), prepared.first_mode_hz);
+        dt_max = std::min(dt_max, chosen.time_step_s);
+        out.settings.push_back(damper.name + ": " + chosen.log);
+        const dem::ParticleSet bed =
+            settled_bed(damper, chosen.stiffness, mounting.rotation, gravity, campaign.seed, store,
+                        task.key + "_" + damper.name);
+        dem::SolverOptions options = damper.solver_options(chosen.stiffness);
+        options.gravity_m_s2 = gravity;
+        // The campaign measures damping from the FRF; the ledger is kept when asked for.
+        options.track_energy = energy;
+        options.energy_layers = energy ? campaign.output.energy_layers : 0;
+        if (damper.locked) {
+            options.lock.fraction = 1.0;  // never released: release_time_s stays 0
+        }
+        attachments.push_back({damper.name, damper.point,
+                               DemDamper(options, mounting.rotation, mounting.origin_m, bed,
+                                         prepared.model.point(damper.point).position_m)});
+    }
+
+    std::vector<std::string> channel_points{campaign.control_point};
+    for (const auto& p : campaign.response_points) {
+        if (p != campaign.control_point) channel_points.push_back(p);
+    }
+    const int series_samples =
+        campaign.output.series ? campaign.output.series_samples_per_period : 0;
+    CoupledSpecimen specimen(prepared.model, prepared.basis, prepared.structure.excitation,
+                             std::move(attachments), channel_points, dt_max,
+                             std::max(series_samples, 1));
+    specimen.set_start_model(prepared.estimate_model, prepared.estimate_basis);
+    SpecimenPlant plant(specimen, series_samples, campaign.scale_response_on_update, energy);
+    const double target_rms = g_to_m_s2(task.level_g);
+    const auto linear_gain = [&](double f) {
+        return linear_response_per_unit_input(prepared.estimate_model, prepared.estimate_basis,
+                                              prepared.structure.excitation, campaign.control_point,
+                                              f);
+    };
+    const Eigen::Vector3d direction = prepared.structure.excitation.direction.normalized();
+    const DrivenMode driven_mode(prepared.estimate_model, prepared.estimate_basis,
+                                 prepared.structure.excitation, campaign.control_point,
+                                 prepared.first_mode_hz);
+
+    const std::string checkpoint_name = task.key;
+    SweepCheckpoint checkpoint;
+    const auto save = [&] {
+        checkpoint.config_hash = config_hash;
+        const std::string text = serialize_checkpoint(checkpoint);
+        store.save_checkpoint(task.key, text);
+        // Every point starts from the text, as a resumed one does.
+        checkpoint = parse_checkpoint(text, checkpoint_name);
+    };
+    if (const auto text = store.load_checkpoint(task.key)) {
+        checkpoint = parse_checkpoint(*text, checkpoint_name);
+        out.resumed_points = checkpoint.points_done;
+        progress.points_resumed(checkpoint.points_done);
+    } else {
+        // First point: the linear steady state at the first frequency, settled particles.
+        const double start = campaign.controller.initial_amplitude
+                                 ? *campaign.controller.initial_amplitude
+                                 : std::sqrt(2.0) * target_rms / linear_gain(frequencies.front());
+        specimen.set_frequency(frequencies.front());
+        specimen.start_from_linear_steady_state(start, 0.0);
+        checkpoint.next_amplitude = start;
+        checkpoint.state = specimen.state();
+        save();
+    }
+
+    const bool vtk_all = campaign.output.vtk == OutputSpec::Vtk::all;
+    const bool vtk_resonance = campaign.output.vtk == OutputSpec::Vtk::resonance;
+    double largest_response = 0.0;
+    for (const auto& row : checkpoint.rows)
+        largest_response = std::max(largest_response, response_ratio(row));
+
+    for (int i = checkpoint.points_done; i < static_cast<int>(frequencies.size()); ++i) {
+        const double f = frequencies[static_cast<std::size_t>(i)];
+        specimen.set_frequency(f);
+        specimen.restore(checkpoint.state);
+        // Warm start: the previous amplitude scaled by the gain ratio the previous point's
+        // equivalent mode predicts (the linear model's ratio when there is none).
+        double start = checkpoint.next_amplitude;
+        if (i > 0) {
+            const double previous_f = frequencies[static_cast<std::size_t>(i - 1)];
+            start *= linear_gain(previous_f) / linear_gain(f);
+            const auto& previous = checkpoint.rows.back();
+            const std::complex<double> measured =
+                previous.values[1].amplitude / previous.values[0].amplitude;
+            const auto predicted = driven_mode.predict(measured, previous_f, f);
+            if (predicted) {
+                start = checkpoint.next_amplitude * std::abs(measured) / std::abs(*predicted);
+            }
+            using Start = CampaignSpec::PointStart;
+            if (campaign.point_start == Start::linear_steady_state) {
+                specimen.start_from_linear_steady_state(start, 0.0);
+            } else if (campaign.point_start == Start::equivalent_steady_state && predicted) {
+                const auto linear = structure::modal_accelerance(
+                    prepared.estimate_model, prepared.estimate_basis, campaign.control_point,
+                    direction, prepared.structure.excitation.point, direction, f);
+                specimen.start_from_linear_steady_state(start, 0.0, *predicted / linear);
+            }
+        }
+        progress.point_started(task, i, f);
+        control::AmplitudeController controller(campaign.controller);
+        controller.set_start_amplitude(start);
+        plant.begin_point();
+        const control::PointResult result = controller.run_point(plant, f, target_rms);
+        const WindowChannels window = plant.window(result.window_begin, result.window_end);
+
+        identification::PointRow row;
+        row.arrangement = prepared.arrangement.name;
+        row.level_g = task.level_g;
+        row.frequency_hz = f;
+        row.status = std::string(control::to_string(result.status));
+        for (std::size_t c = 0; c < window.rms.size(); ++c) {
+            identification::ChannelValue v;
+            v.rms = window.rms[c];
+            v.amplitude = window.fundamental[c];
+            v.h2_ratio = window.h2_ratio[c];
+            v.h3_ratio = window.h3_ratio[c];
+            row.values.push_back(v);
+        }
+        if (series_samples > 0) {
+            row.series = "series/" + task.key + "_" + std::to_string(i) + ".csv";
+            store.save_file(row.series, series_text(specimen, plant, result));
+        }
+        const bool peak = response_ratio(row) > largest_response;
+        largest_response = std::max(largest_response, response_ratio(row));
+        if (vtk_all || (vtk_resonance && peak)) {
+            for (std::size_t d = 0; d < specimen.attachments().size(); ++d) {
+                const auto text = bed_vtk_text(specimen.attachments()[d]);
+                if (!text) continue;
+                store.save_file("vtk/" + task.key + "_" +
+                                    (vtk_all ? std::to_string(i) : std::string("resonance")) + "_" +
+                                    damper_names[d] + ".vtk",
+                                *text);
+            }
+        }
+        checkpoint.rows.push_back(row);
+        checkpoint.control_log.push_back(control_log_line(task, result));
+        if (energy) {
+            for (auto& line :
+                 energy_lines(task, f, damper_names,
+                              plant.window_energy(result.window_begin, result.window_end))) {
+                checkpoint.energy_log.push_back(std::move(line));
+            }
+        }
+        checkpoint.points_done = i + 1;
+        checkpoint.next_amplitude = result.amplitude_final;
+        checkpoint.state = specimen.state();
+        save();
+        out.periods_simulated += result.periods_simulated;
+        progress.point_finished(task, f, result);
+    }
+    out.rows = checkpoint.rows;
+    out.control_log = checkpoint.control_log;
+    out.energy_log = checkpoint.energy_log;
+    return out;
+}
+
+}  // namespace sb::bench

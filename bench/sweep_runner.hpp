@@ -1,0 +1,63 @@
+// One sweep of a campaign, run (or resumed) on its own: the task a scheduler hands out.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "bench/campaign_config.hpp"
+#include "bench/campaign_plan.hpp"
+#include "bench/checkpoint_store.hpp"
+#include "control/result.hpp"
+#include "identification/recording.hpp"
+
+namespace sb::bench {
+
+/// One sweep's results, as the campaign returns them.
+struct SweepResult {
+    std::string key;
+    std::string arrangement;
+    double level_g = 0.0;
+    double first_mode_hz = 0.0;
+    std::vector<double> frequencies_hz;  ///< the sweep's grid, in the order stepped
+    std::vector<std::string> settings;   ///< derived settings (stiffness, time step)
+    std::vector<identification::PointRow> rows;
+    std::vector<std::string> control_log;  ///< control.csv rows
+    std::vector<std::string> energy_log;   ///< energy.csv rows (output.energy)
+    int resumed_points = 0;                ///< taken from the store, not simulated
+    long long periods_simulated = 0;
+};
+
+/// Progress lines shared by the sweeps of a campaign (thread-safe).
+class CampaignProgress {
+  public:
+    CampaignProgress(std::function<void(const std::string&)> sink, int points_total);
+    void point_started(const SweepTask& task, int index, double frequency_hz);
+    void points_resumed(int count);
+    void point_finished(const SweepTask& task, double frequency_hz,
+                        const control::PointResult& result);
+    [[nodiscard]] long long periods() const { return periods_.load(); }
+
+  private:
+    std::function<void(const std::string&)> sink_;
+    int points_total_;
+    std::mutex mutex_;
+    std::atomic<int> points_done_{0};
+    std::atomic<int> points_simulated_{0};
+    std::atomic<long long> periods_{0};
+    std::chrono::steady_clock::time_point start_;
+};
+
+/// Runs (or resumes from `store`) the sweep `task` of `config`, whose resolved config has the
+/// hash `config_hash`. After every point the sweep's checkpoint goes to the store, and every
+/// point starts from that checkpoint's text, so an interrupted sweep resumed from the store
+/// gives exactly the numbers of an uninterrupted one. Throws dem::SimulationError when a DEM
+/// guard fires.
+SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
+                      const std::string& config_hash, CheckpointStore& store,
+                      CampaignProgress& progress);
+
+}  // namespace sb::bench
