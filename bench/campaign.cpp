@@ -111,8 +111,8 @@ CampaignResult run_campaign(const CampaignConfig& config, const CampaignContext&
     }
     result.recording = make_recording(config, result.channel_points);
     CampaignSummary& summary = result.summary;
-    summary.points = plan.points();
     for (const auto& sweep : sweeps) {
+        summary.points += static_cast<int>(sweep.rows.size());
         result.recording.points.insert(result.recording.points.end(), sweep.rows.begin(),
                                        sweep.rows.end());
         summary.resumed_points += sweep.resumed_points;

@@ -94,6 +94,10 @@ void write_campaign_output(const CampaignConfig& config, const CampaignResult& r
     const fs::path& out_dir = directory.out_dir;
     fs::create_directories(out_dir);
     id::write_recording(out_dir, result.recording);
+    if (result.recording.damping.empty()) {
+        // No estimate resolved: the file is there all the same, with its header.
+        id::write_damping_csv(out_dir / "damping.csv", {});
+    }
     if (config.campaign.output.uff) {
         std::vector<id::Uff58Record> records;
         for (const auto& level : result.levels) {
@@ -105,6 +109,11 @@ void write_campaign_output(const CampaignConfig& config, const CampaignResult& r
         id::write_uff58(out_dir / "frf.uff", records);
     }
     write_control_log(result, out_dir);
+    if (config.campaign.seeds > 1) {
+        // Each filling's own estimates, beside damping.csv's mean and scatter.
+        id::write_damping_csv(out_dir / "damping_fillings.csv",
+                              id::filling_damping_rows(result.levels));
+    }
     if (config.campaign.output.energy) write_energy_log(config, result, out_dir);
     write_file_atomically(out_dir / "config.toml", directory.config_text);
     write_file_atomically(out_dir / "config.resolved.toml", resolved_config_toml(config));

@@ -167,16 +167,27 @@ CampaignPlan plan_campaign(const CampaignConfig& config, const Selection& select
             if (a.name == name) plan.arrangements.push_back(prepare(config, a));
         }
     }
+    // One stiffness for the whole campaign: sized for its largest level.
+    double largest_g = 0.0;
+    for (double level : campaign.levels_g) largest_g = std::max(largest_g, level);
     for (const auto& s : wanted.sweeps) {
-        SweepTask t;
-        t.index = plan.tasks.size();
-        for (const auto& p : plan.arrangements) {
-            if (p.arrangement.name == s.arrangement) t.prepared = &p;
+        for (int filling = 0; filling < campaign.seeds; ++filling) {
+            SweepTask t;
+            t.index = plan.tasks.size();
+            for (const auto& p : plan.arrangements) {
+                if (p.arrangement.name == s.arrangement) t.prepared = &p;
+            }
+            t.level_g = s.level_g;
+            t.frequencies_hz =
+                s.frequencies_hz.empty() ? t.prepared->frequencies_hz : s.frequencies_hz;
+            t.filling = filling;
+            t.seed = campaign.seed + static_cast<std::uint64_t>(filling);
+            t.stiffness_level_g = std::max(largest_g, s.level_g);
+            t.refine = s.frequencies_hz.empty();
+            t.key = sweep_key(s.arrangement, s.level_g, s.frequencies_hz);
+            if (filling > 0) t.key += "_s" + std::to_string(filling);
+            plan.tasks.push_back(std::move(t));
         }
-        t.level_g = s.level_g;
-        t.frequencies_hz = s.frequencies_hz.empty() ? t.prepared->frequencies_hz : s.frequencies_hz;
-        t.key = sweep_key(s.arrangement, s.level_g, s.frequencies_hz);
-        plan.tasks.push_back(std::move(t));
     }
     return plan;
 }

@@ -50,8 +50,17 @@ struct SweepTask {
     const PreparedArrangement* prepared = nullptr;
     double level_g = 0.0;
     std::vector<double> frequencies_hz;  ///< in sweep order
+    int filling = 0;                     ///< which filling of the bed (0, 1, ... seeds - 1)
+    std::uint64_t seed = 1;              ///< its seed: campaign.seed + filling
+    /// Level an automatic contact stiffness is sized for: the campaign's largest (also
+    /// covering this sweep's) unless the damper asks for each sweep's own [g].
+    double stiffness_level_g = 0.0;
+    /// On the config's grid: frequencies may be added to resolve the estimates (never on
+    /// given frequencies, which are exactly what a caller asked for).
+    bool refine = false;
     /// File-name friendly and unique: "H-0_1g"; a sweep on given frequencies adds a hash of
-    /// them ("H-0_1g_f3a9c0d12"), so its checkpoint is never taken for the grid's.
+    /// them ("H-0_1g_f3a9c0d12"), so its checkpoint is never taken for the grid's, and a
+    /// further filling its index ("H-0_1g_s2").
     std::string key;
 };
 

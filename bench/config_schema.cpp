@@ -54,6 +54,15 @@ std::shared_ptr<const config::Table> frequencies_table() {
     t.choice(
         "direction", [](FrequencyGridSpec & g) -> auto& { return g.direction; },
         FrequencyGridSpec::kDirectionNames, "sweep direction");
+    t.integer(
+         "refine_points", [](FrequencyGridSpec & g) -> auto& { return g.refine_points; },
+         "most frequencies a sweep adds near its peak to resolve its estimates")
+        .bound(Bound::non_negative())
+        .doc(
+            "most frequencies a sweep on the grid adds near its peak when its half-power or "
+            "circle-fit estimate is not resolved (peak at an edge, no half-power crossing, too "
+            "few points in the band): a lab engineer's refinement, deterministic and "
+            "resumable; a sweep that spends them says so. 0: none");
     t.check([](const FrequencyGridSpec& g) { return g.validate(); });
     return t.build();
 }
@@ -112,6 +121,14 @@ std::shared_ptr<const config::Table> campaign_table() {
          "seed", [](CampaignConfig & c) -> auto& { return c.campaign.seed; },
          "seed of the particle filling")
         .bound(Bound::non_negative());
+    t.integer(
+         "seeds", [](CampaignConfig & c) -> auto& { return c.campaign.seeds; },
+         "fillings of the bed per sweep (seeds seed, seed + 1, ...)")
+        .bound(Bound::at_least(1))
+        .doc(
+            "fillings of the bed per sweep (seeds `seed`, `seed` + 1, ...): each its own FRF "
+            "and estimates; damping.csv gives their mean and scatter per level, "
+            "damping_fillings.csv each one");
     t.table(
         "frequencies", [](CampaignConfig & c) -> auto& { return c.campaign.frequencies; },
         frequencies_table());
@@ -241,6 +258,11 @@ std::shared_ptr<const config::Table> controller_table() {
             "as a geometric decay (linearly when it does not decay) over at most this many "
             "periods, stays within half the tolerance; 32 is the e-folding time of a "
             "0.5 %-damped mode; 0 turns the test off");
+    t.boolean(
+        "phase_test", [](ControllerOptions & c) -> auto& { return c.phase_test; },
+        "a window is settled only when the control channel's complex fundamental agrees "
+        "over it within the tolerance too (a beating transient turns it while the RMS may "
+        "not move)");
     t.check([](const ControllerOptions& c) { return c.validate(); });
     return t.build();
 }

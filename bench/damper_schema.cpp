@@ -192,6 +192,13 @@ std::shared_ptr<const config::Table> contact_table() {
          "DEM time step / contact time")
         .unit("-")
         .bound(Bound::closed(1e-3, 0.5));
+    t.choice(
+         "stiffness_for", [](ContactSpec & c) -> auto& { return c.stiffness_for; },
+         ContactSpec::kStiffnessForNames, "what an automatic stiffness is sized for")
+        .doc(
+            "what an automatic stiffness is sized for: the largest level of the campaign (one "
+            "stiffness and time step for every sweep, so the numerics do not change along the "
+            "damping curve) or each sweep's own level (cheaper at low levels)");
     t.number(
          "restitution", [](ContactSpec & c) -> auto& { return c.particle_particle.restitution; },
          "particle-particle coefficient of restitution")

@@ -13,6 +13,7 @@
 #include "bench/attachment.hpp"
 #include "bench/coupled_specimen.hpp"
 #include "bench/driven_mode.hpp"
+#include "bench/grid_refinement.hpp"
 #include "bench/linear_estimate.hpp"
 #include "bench/specimen_plant.hpp"
 #include "bench/sweep_checkpoint.hpp"
@@ -146,13 +147,26 @@ void CampaignProgress::point_started(const SweepTask& task, int index, double fr
     if (!sink_) return;
     std::ostringstream out;
     out << "  start " << task.prepared->arrangement.name << ' ' << number_text(task.level_g)
-        << " g " << std::fixed << std::setprecision(3) << frequency_hz << " Hz (frequency "
-        << index + 1 << " of " << task.frequencies_hz.size() << ")";
+        << " g " << std::fixed << std::setprecision(3) << frequency_hz << " Hz (";
+    const auto planned = static_cast<int>(task.frequencies_hz.size());
+    if (index < planned) {
+        out << "frequency " << index + 1 << " of " << planned << ")";
+    } else {  // beyond the planned grid: a frequency the refinement added near the peak
+        out << "added frequency " << index - planned + 1 << ")";
+    }
     std::lock_guard<std::mutex> lock(mutex_);
     sink_(out.str());
 }
 
 void CampaignProgress::points_resumed(int count) { points_done_ += count; }
+
+void CampaignProgress::points_added(int count) { points_total_ += count; }
+
+void CampaignProgress::note(const std::string& line) {
+    if (!sink_) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    sink_(line);
+}
 
 void CampaignProgress::point_finished(const SweepTask& task, double frequency_hz,
                                       const control::PointResult& result) {
@@ -180,7 +194,8 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
     const CampaignSpec& campaign = config.campaign;
     const PreparedArrangement& prepared = *task.prepared;
     const Eigen::Vector3d gravity = arrangement_gravity(prepared.arrangement);
-    const auto& frequencies = task.frequencies_hz;
+    // The planned grid; refinement may add frequencies at the end.
+    std::vector<double> frequencies = task.frequencies_hz;
 
     SweepResult out;
     out.key = task.key;
@@ -207,11 +222,15 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
             damper.particles, damper.enclosure, damper.contact.normal,
             damper.contact.particle_particle.restitution, damper.contact.normal_stiffness,
             damper.contact.max_overlap_fraction, damper.contact.time_step_fraction,
-            std::sqrt(2.0) * g_to_m_s2(task.level_g), prepared.first_mode_hz);
+            std::sqrt(2.0) *
+                g_to_m_s2(damper.contact.stiffness_for == ContactSpec::StiffnessFor::campaign
+                              ? task.stiffness_level_g
+                              : task.level_g),
+            prepared.first_mode_hz);
         dt_max = std::min(dt_max, chosen.time_step_s);
         out.settings.push_back(damper.name + ": " + chosen.log);
         const dem::ParticleSet bed =
-            settled_bed(damper, chosen.stiffness, mounting.rotation, gravity, campaign.seed, store,
+            settled_bed(damper, chosen.stiffness, mounting.rotation, gravity, task.seed, store,
                         task.key + "_" + damper.name);
         dem::SolverOptions options = damper.solver_options(chosen.stiffness);
         options.gravity_m_s2 = gravity;
@@ -279,86 +298,116 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
     for (const auto& row : checkpoint.rows)
         largest_response = std::max(largest_response, response_ratio(row));
 
-    for (int i = checkpoint.points_done; i < static_cast<int>(frequencies.size()); ++i) {
-        const double f = frequencies[static_cast<std::size_t>(i)];
-        specimen.set_frequency(f);
-        specimen.restore(checkpoint.state);
-        // Warm start: the previous amplitude scaled by the gain ratio the previous point's
-        // equivalent mode predicts (the linear model's ratio when there is none).
-        double start = checkpoint.next_amplitude;
-        if (i > 0) {
-            const double previous_f = frequencies[static_cast<std::size_t>(i - 1)];
-            start *= linear_gain(previous_f) / linear_gain(f);
-            const auto& previous = checkpoint.rows.back();
-            const std::complex<double> measured =
-                previous.values[1].amplitude / previous.values[0].amplitude;
-            const auto predicted = driven_mode.predict(measured, previous_f, f);
-            if (predicted) {
-                start = checkpoint.next_amplitude * std::abs(measured) / std::abs(*predicted);
+    const bool base = prepared.structure.excitation.kind == structure::ExcitationSpec::Kind::base;
+    const int budget = task.refine ? campaign.frequencies.refine_points : 0;
+    int added = 0;
+    for (;;) {
+        for (int i = checkpoint.points_done; i < static_cast<int>(frequencies.size()); ++i) {
+            const double f = frequencies[static_cast<std::size_t>(i)];
+            specimen.set_frequency(f);
+            specimen.restore(checkpoint.state);
+            // Warm start: the previous amplitude scaled by the gain ratio the previous point's
+            // equivalent mode predicts (the linear model's ratio when there is none).
+            double start = checkpoint.next_amplitude;
+            if (i > 0) {
+                const double previous_f = frequencies[static_cast<std::size_t>(i - 1)];
+                start *= linear_gain(previous_f) / linear_gain(f);
+                const auto& previous = checkpoint.rows.back();
+                const std::complex<double> measured =
+                    previous.values[1].amplitude / previous.values[0].amplitude;
+                const auto predicted = driven_mode.predict(measured, previous_f, f);
+                if (predicted) {
+                    start = checkpoint.next_amplitude * std::abs(measured) / std::abs(*predicted);
+                }
+                using Start = CampaignSpec::PointStart;
+                if (campaign.point_start == Start::linear_steady_state) {
+                    specimen.start_from_linear_steady_state(start, 0.0);
+                } else if (campaign.point_start == Start::equivalent_steady_state && predicted) {
+                    const auto linear = structure::modal_accelerance(
+                        prepared.estimate_model, prepared.estimate_basis, campaign.control_point,
+                        direction, prepared.structure.excitation.point, direction, f);
+                    specimen.start_from_linear_steady_state(start, 0.0, *predicted / linear);
+                }
             }
-            using Start = CampaignSpec::PointStart;
-            if (campaign.point_start == Start::linear_steady_state) {
-                specimen.start_from_linear_steady_state(start, 0.0);
-            } else if (campaign.point_start == Start::equivalent_steady_state && predicted) {
-                const auto linear = structure::modal_accelerance(
-                    prepared.estimate_model, prepared.estimate_basis, campaign.control_point,
-                    direction, prepared.structure.excitation.point, direction, f);
-                specimen.start_from_linear_steady_state(start, 0.0, *predicted / linear);
-            }
-        }
-        progress.point_started(task, i, f);
-        control::AmplitudeController controller(campaign.controller);
-        controller.set_start_amplitude(start);
-        plant.begin_point();
-        const control::PointResult result = controller.run_point(plant, f, target_rms);
-        const WindowChannels window = plant.window(result.window_begin, result.window_end);
+            progress.point_started(task, i, f);
+            control::AmplitudeController controller(campaign.controller);
+            controller.set_start_amplitude(start);
+            plant.begin_point();
+            const control::PointResult result = controller.run_point(plant, f, target_rms);
+            const WindowChannels window = plant.window(result.window_begin, result.window_end);
 
-        identification::PointRow row;
-        row.arrangement = prepared.arrangement.name;
-        row.level_g = task.level_g;
-        row.frequency_hz = f;
-        row.status = std::string(control::to_string(result.status));
-        for (std::size_t c = 0; c < window.rms.size(); ++c) {
-            identification::ChannelValue v;
-            v.rms = window.rms[c];
-            v.amplitude = window.fundamental[c];
-            v.h2_ratio = window.h2_ratio[c];
-            v.h3_ratio = window.h3_ratio[c];
-            row.values.push_back(v);
-        }
-        if (series_samples > 0) {
-            row.series = "series/" + task.key + "_" + std::to_string(i) + ".csv";
-            store.save_file(row.series, series_text(specimen, plant, result));
-        }
-        const bool peak = response_ratio(row) > largest_response;
-        largest_response = std::max(largest_response, response_ratio(row));
-        if (vtk_all || (vtk_resonance && peak)) {
-            for (std::size_t d = 0; d < specimen.attachments().size(); ++d) {
-                const auto text = bed_vtk_text(specimen.attachments()[d]);
-                if (!text) continue;
-                store.save_file("vtk/" + task.key + "_" +
-                                    (vtk_all ? std::to_string(i) : std::string("resonance")) + "_" +
-                                    damper_names[d] + ".vtk",
-                                *text);
+            identification::PointRow row;
+            row.arrangement = prepared.arrangement.name;
+            row.level_g = task.level_g;
+            row.frequency_hz = f;
+            row.status = std::string(control::to_string(result.status));
+            for (std::size_t c = 0; c < window.rms.size(); ++c) {
+                identification::ChannelValue v;
+                v.rms = window.rms[c];
+                v.amplitude = window.fundamental[c];
+                v.h2_ratio = window.h2_ratio[c];
+                v.h3_ratio = window.h3_ratio[c];
+                row.values.push_back(v);
             }
-        }
-        checkpoint.rows.push_back(row);
-        checkpoint.control_log.push_back(control_log_line(task, result));
-        if (energy) {
-            for (auto& line :
-                 energy_lines(task, f, damper_names,
-                              plant.window_energy(result.window_begin, result.window_end))) {
-                checkpoint.energy_log.push_back(std::move(line));
+            if (series_samples > 0) {
+                row.series = "series/" + task.key + "_" + std::to_string(i) + ".csv";
+                store.save_file(row.series, series_text(specimen, plant, result));
             }
+            const bool peak = response_ratio(row) > largest_response;
+            largest_response = std::max(largest_response, response_ratio(row));
+            if (vtk_all || (vtk_resonance && peak)) {
+                for (std::size_t d = 0; d < specimen.attachments().size(); ++d) {
+                    const auto text = bed_vtk_text(specimen.attachments()[d]);
+                    if (!text) continue;
+                    store.save_file("vtk/" + task.key + "_" +
+                                        (vtk_all ? std::to_string(i) : std::string("resonance")) +
+                                        "_" + damper_names[d] + ".vtk",
+                                    *text);
+                }
+            }
+            checkpoint.rows.push_back(row);
+            checkpoint.control_log.push_back(control_log_line(task, result));
+            if (energy) {
+                for (auto& line :
+                     energy_lines(task, f, damper_names,
+                                  plant.window_energy(result.window_begin, result.window_end))) {
+                    checkpoint.energy_log.push_back(std::move(line));
+                }
+            }
+            checkpoint.points_done = i + 1;
+            checkpoint.next_amplitude = result.amplitude_final;
+            checkpoint.state = specimen.state();
+            save();
+            out.periods_simulated += result.periods_simulated;
+            progress.point_finished(task, f, result);
         }
-        checkpoint.points_done = i + 1;
-        checkpoint.next_amplitude = result.amplitude_final;
-        checkpoint.state = specimen.state();
-        save();
-        out.periods_simulated += result.periods_simulated;
-        progress.point_finished(task, f, result);
+        // Refinement: the points of the grid so far (a resumed sweep has the same rows, so it
+        // adds the same frequencies) decide whether and where to add.
+        const std::vector<identification::PointRow> so_far(
+            checkpoint.rows.begin(),
+            checkpoint.rows.begin() + static_cast<std::ptrdiff_t>(frequencies.size()));
+        const GridVerdict verdict =
+            assess_grid(so_far, base, static_cast<std::size_t>(std::max(0, budget - added)));
+        if (verdict.resolved || !task.refine) break;
+        if (verdict.add_hz.empty()) {
+            const std::string line = prepared.arrangement.name + " " + number_text(task.level_g) +
+                                     " g: estimates unresolved after " + std::to_string(added) +
+                                     " added frequencies (" + verdict.unresolved_reason + ")";
+            out.settings.push_back(line);
+            progress.note(line);
+            break;
+        }
+        frequencies.insert(frequencies.end(), verdict.add_hz.begin(), verdict.add_hz.end());
+        added += static_cast<int>(verdict.add_hz.size());
+        progress.points_added(static_cast<int>(verdict.add_hz.size()));
     }
+    if (added > 0) {
+        out.settings.push_back("grid refined: " + std::to_string(added) + " frequencies added");
+    }
+    out.frequencies_hz = frequencies;
     out.rows = checkpoint.rows;
+    // The checkpoint holds one filling's rows and does not repeat its number.
+    for (auto& row : out.rows) row.filling = task.filling;
     out.control_log = checkpoint.control_log;
     out.energy_log = checkpoint.energy_log;
     return out;

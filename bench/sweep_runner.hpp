@@ -37,13 +37,17 @@ class CampaignProgress {
     CampaignProgress(std::function<void(const std::string&)> sink, int points_total);
     void point_started(const SweepTask& task, int index, double frequency_hz);
     void points_resumed(int count);
+    /// A sweep refined its grid by `count` frequencies.
+    void points_added(int count);
+    /// A line of its own (a sweep that could not resolve its estimates).
+    void note(const std::string& line);
     void point_finished(const SweepTask& task, double frequency_hz,
                         const control::PointResult& result);
     [[nodiscard]] long long periods() const { return periods_.load(); }
 
   private:
     std::function<void(const std::string&)> sink_;
-    int points_total_;
+    std::atomic<int> points_total_;
     std::mutex mutex_;
     std::atomic<int> points_done_{0};
     std::atomic<int> points_simulated_{0};

@@ -170,7 +170,8 @@ PointResult AmplitudeController::run_point(Plant& plant, double frequency_hz, do
     forced_start_ = 0.0;
     std::vector<double> window;  // RMS since the last change, transient skipped; cleared at
                                  // every change so no stale or unfilled value votes
-    int since_change = 0;        // periods at this amplitude (this frequency)
+    std::vector<std::complex<double>> phasors;  // the same periods' control fundamentals
+    int since_change = 0;                       // periods at this amplitude (this frequency)
     Bracket bracket;
     std::optional<Sample> best;           // amplitude whose level came closest to the target
     std::optional<Sample> last_measured;  // previous settled or two-period level
@@ -181,8 +182,13 @@ PointResult AmplitudeController::run_point(Plant& plant, double frequency_hz, do
         const double rms = recorder.run(amplitude);
         if (++since_change <= o.transient_periods) continue;
         window.push_back(rms);
+        const auto& harmonics = result.periods.back().harmonics;
+        if (o.phase_test && !harmonics.empty()) phasors.push_back(harmonics.front());
 
-        const WindowVerdict verdict = assess_window(window, target_rms, o);
+        const WindowVerdict verdict = assess_window(
+            window, target_rms, o,
+            phasors.size() == window.size() ? std::span<const std::complex<double>>(phasors)
+                                            : std::span<const std::complex<double>>());
         if (verdict.state == WindowState::kFilling) continue;
         if (verdict.state == WindowState::kUnsettled) {
             // Neither settled nor clearly off: its mean still ranks the amplitude for the
@@ -270,6 +276,7 @@ PointResult AmplitudeController::run_point(Plant& plant, double frequency_hz, do
 
         amplitude = decision.next_amplitude;
         window.clear();
+        phasors.clear();
         since_change = 0;
     }
 

@@ -53,6 +53,10 @@ struct ControllerOptions {
     /// within half the tolerance. The default is the e-folding time 1/(2 pi zeta) of a
     /// 0.5 %-damped mode at resonance, paper 000's empty beam; 0: no drift test [periods].
     int drift_horizon_periods = 32;
+    /// A window is settled only when the control channel's complex fundamental (the plant's
+    /// harmonics[0]) agrees over it too, within the tolerance: a beating transient turns the
+    /// phasor while the RMS may stay within the tolerance.
+    bool phase_test = true;
 
     /// Every violated constraint, keys as above.
     [[nodiscard]] Violations validate() const;

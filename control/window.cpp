@@ -83,8 +83,23 @@ Drift assess_drift(std::span<const double> v, int horizon_periods) {
     return drift;
 }
 
+bool phasors_within(std::span<const std::complex<double>> phasors, std::size_t count,
+                    double tolerance) {
+    if (phasors.size() < count || count == 0) return false;
+    const auto w = phasors.subspan(phasors.size() - count, count);
+    double largest = 0.0;
+    double spread = 0.0;
+    for (std::size_t i = 0; i < w.size(); ++i) {
+        largest = std::max(largest, std::abs(w[i]));
+        for (std::size_t j = i + 1; j < w.size(); ++j)
+            spread = std::max(spread, std::abs(w[i] - w[j]));
+    }
+    return spread <= tolerance * largest;
+}
+
 WindowVerdict assess_window(std::span<const double> values, double target_rms,
-                            const ControllerOptions& options) {
+                            const ControllerOptions& options,
+                            std::span<const std::complex<double>> fundamentals) {
     const auto n = static_cast<std::size_t>(options.window_periods);
     const double tol = options.tolerance;
     const std::size_t m = std::min(values.size(), n);
@@ -95,7 +110,8 @@ WindowVerdict assess_window(std::span<const double> values, double target_rms,
     // a lightly damped mode approaches its steady state by a few percent per period, which
     // fits inside the spread long before it has arrived.
     const Drift drift = assess_drift(w, options.drift_horizon_periods);
-    if (m == n && within(w, 0, 1, tol)) {
+    const bool phase_steady = fundamentals.empty() || phasors_within(fundamentals, m, tol);
+    if (m == n && within(w, 0, 1, tol) && phase_steady) {
         const double level = mean(w);
         if (!drift.monotone) {
             return {WindowState::kSettled, level, static_cast<int>(m), level};

@@ -1,6 +1,7 @@
 // Judging a window of per-period RMS values: settled, two-period cycle, or early decision.
 #pragma once
 
+#include <complex>
 #include <span>
 
 #include "control/options.hpp"
@@ -48,7 +49,16 @@ struct Drift {
 
 /// Judges `values` (per-period RMS since the last change, transient already skipped, oldest
 /// first; only the newest window_periods count; no unfilled slot votes) against `target_rms`.
+/// With `fundamentals` (the control channel's complex fundamental of the same periods), a
+/// window is only settled when they agree too: a transient at the structure's own frequency
+/// beats against the drive and turns the period's phasor while the RMS may hardly change.
 [[nodiscard]] WindowVerdict assess_window(std::span<const double> values, double target_rms,
-                                          const ControllerOptions& options);
+                                          const ControllerOptions& options,
+                                          std::span<const std::complex<double>> fundamentals = {});
+
+/// True when every two of the newest `count` phasors are apart by at most `tolerance` times
+/// the largest of their magnitudes (the RMS spread test of the window, for complex values).
+[[nodiscard]] bool phasors_within(std::span<const std::complex<double>> phasors, std::size_t count,
+                                  double tolerance);
 
 }  // namespace sb::control

@@ -111,7 +111,7 @@ struct AutoStiffnessInput {
     double gap_m = 0.0;                  ///< free flight across the cavity (for estimate)
     double gravity_m_s2 = kStandardGravity;
     double restitution = 0.9;                ///< for the damped contact time (Hooke)
-    double time_step_fraction = 1.0 / 20.0;  ///< dt = fraction * shortest contact time
+    double time_step_fraction = 1.0 / 40.0;  ///< dt = fraction * shortest contact time
     /// Size k for particle-wall impacts (m* = m, the larger overlap at a given speed), else for
     /// particle-particle impacts (m* = m/2). The time step always follows from the shorter
     /// particle-particle contact time.

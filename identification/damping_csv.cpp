@@ -1,4 +1,5 @@
 // damping.csv reader and writer (formats.md).
+#include <algorithm>
 #include <charconv>
 #include <fstream>
 #include <string_view>
@@ -80,6 +81,11 @@ std::vector<DampingRow> read_damping_csv(const std::filesystem::path& path) {
     const std::size_t c_used = find_column(t, "points_used");
     const std::size_t c_freq = find_column(t, "frequencies_used_hz");
     const std::size_t c_skip = find_column(t, "points_skipped");
+    // Optional: the seed scatter over several fillings of the bed.
+    const std::size_t c_fillings = find_column(t, "fillings");
+    const std::size_t c_f_std = find_column(t, "natural_frequency_std_hz");
+    const std::size_t c_z_std = find_column(t, "damping_ratio_std");
+    const std::size_t c_filling = find_column(t, "filling");
     const std::size_t absent = t.header.size();
     std::vector<DampingRow> rows;
     for (const auto& r : t.rows) {
@@ -98,6 +104,18 @@ std::vector<DampingRow> read_damping_csv(const std::filesystem::path& path) {
         if (c_used != absent) d.points_used = count_cell(t, r[c_used], "points_used");
         if (c_freq != absent) d.frequencies_used_hz = frequencies_cell(t, r[c_freq]);
         if (c_skip != absent) d.points_skipped = count_cell(t, r[c_skip], "points_skipped");
+        if (c_fillings != absent && !r[c_fillings].text.empty()) {
+            d.fillings = count_cell(t, r[c_fillings], "fillings");
+        }
+        if (c_f_std != absent && !r[c_f_std].text.empty()) {
+            d.natural_frequency_std_hz = detail::number(t, r[c_f_std], "natural_frequency_std_hz");
+        }
+        if (c_z_std != absent && !r[c_z_std].text.empty()) {
+            d.damping_ratio_std = detail::number(t, r[c_z_std], "damping_ratio_std");
+        }
+        if (c_filling != absent && !r[c_filling].text.empty()) {
+            d.filling = count_cell(t, r[c_filling], "filling");
+        }
         // Both known and different: the row contradicts itself.
         if (d.points_used > 0 && !d.frequencies_used_hz.empty() &&
             static_cast<std::size_t>(d.points_used) != d.frequencies_used_hz.size()) {
@@ -115,8 +133,11 @@ void write_damping_csv(const std::filesystem::path& path, const std::vector<Damp
     std::ofstream f(path, std::ios::binary);
     if (!f) throw FileError(path.string(), 0, 0, "cannot open the file for writing");
     // The columns of older files first, in their order, so that they keep their positions.
+    const bool per_filling =
+        std::any_of(rows.begin(), rows.end(), [](const DampingRow& r) { return r.filling >= 0; });
     f << "arrangement,level_g,natural_frequency_hz,damping_ratio,method,points_used,"
-         "frequencies_used_hz,points_skipped\n";
+         "frequencies_used_hz,points_skipped,fillings,natural_frequency_std_hz,damping_ratio_std"
+      << (per_filling ? ",filling" : "") << "\n";
     for (const auto& r : rows) {
         detail::check_cell_text(r.arrangement, "arrangement");
         detail::check_cell_text(r.method, "method");
@@ -127,7 +148,11 @@ void write_damping_csv(const std::filesystem::path& path, const std::vector<Damp
             if (i > 0) f << kFrequencySeparator;
             f << detail::exact_text(r.frequencies_used_hz[i]);
         }
-        f << ',' << r.points_skipped << '\n';
+        f << ',' << r.points_skipped << ',' << r.fillings << ','
+          << detail::exact_text(r.natural_frequency_std_hz) << ','
+          << detail::exact_text(r.damping_ratio_std);
+        if (per_filling) f << ',' << r.filling;
+        f << '\n';
     }
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <map>
 #include <stdexcept>
+#include <tuple>
 
 #include "core/units.hpp"
 #include "identification/energy.hpp"
@@ -94,12 +95,14 @@ std::vector<LevelIdentification> identify_recording(const Recording& rec,
         std::complex<double> cross;  ///< Σ Y conj(X)
         double reference = 0.0;      ///< Σ |X|²
     };
-    std::vector<std::pair<std::string, double>> order;
-    std::map<std::pair<std::string, double>, std::map<double, Spectra>> groups;
-    std::map<std::pair<std::string, double>, std::vector<double>> closest;
+    // One FRF per arrangement, level and filling of the bed.
+    using Key = std::tuple<std::string, double, int>;
+    std::vector<Key> order;
+    std::map<Key, std::map<double, Spectra>> groups;
+    std::map<Key, std::vector<double>> closest;
     const bool skip = options.closest == ClosestPolicy::skip;
     for (const auto& p : rec.points) {
-        const auto key = std::make_pair(p.arrangement, p.level_g);
+        const Key key{p.arrangement, p.level_g, p.filling};
         if (groups.find(key) == groups.end()) {
             order.push_back(key);
             groups[key];  // the level keeps its place even if every point is left out
@@ -124,7 +127,9 @@ std::vector<LevelIdentification> identify_recording(const Recording& rec,
             frf.frequency_hz.push_back(f);
             frf.value.push_back(sum.cross / sum.reference);
         }
-        out.push_back(identify_frf(key.first, key.second, frf, options, force_reference));
+        out.push_back(
+            identify_frf(std::get<0>(key), std::get<1>(key), frf, options, force_reference));
+        out.back().filling = std::get<2>(key);
         out.back().channel = rec.channels[resp].name;
         auto& flagged = skip ? out.back().skipped_hz : out.back().closest_used_hz;
         flagged = closest[key];
@@ -133,21 +138,95 @@ std::vector<LevelIdentification> identify_recording(const Recording& rec,
     return out;
 }
 
-std::vector<DampingRow> damping_rows(const std::vector<LevelIdentification>& levels,
-                                     bool include_rational_fraction) {
+namespace {
+
+/// The row of one estimate of one filling.
+DampingRow row_of(const LevelIdentification& l, Method m, const ModalEstimate& e) {
+    DampingRow r;
+    r.arrangement = l.arrangement;
+    r.level_g = l.level_g;
+    r.natural_frequency_hz = e.natural_frequency_hz;
+    r.damping_ratio = e.damping_ratio;
+    r.method = std::string(to_string(m));
+    r.points_used = e.points_used;
+    r.frequencies_used_hz = e.frequencies_used_hz;
+    r.points_skipped = static_cast<int>(l.skipped_hz.size());
+    return r;
+}
+
+template <class Each>
+void for_each_estimate(const LevelIdentification& l, bool include_rational_fraction, Each each) {
+    const std::pair<Method, const ModalEstimate*> all[] = {
+        {Method::half_power, &l.half_power},
+        {Method::circle_fit, &l.circle_fit},
+        {Method::rational_fraction, &l.rational_fraction}};
+    for (const auto& [m, e] : all) {
+        if (!e->ok() || (m == Method::rational_fraction && !include_rational_fraction)) continue;
+        each(m, *e);
+    }
+}
+
+/// Mean and sample standard deviation (0 for one value).
+std::pair<double, double> mean_and_spread(const std::vector<double>& v) {
+    double mean = 0.0;
+    for (double x : v) mean += x / static_cast<double>(v.size());
+    if (v.size() < 2) return {mean, 0.0};
+    double ss = 0.0;
+    for (double x : v) ss += (x - mean) * (x - mean);
+    return {mean, std::sqrt(ss / static_cast<double>(v.size() - 1))};
+}
+
+}  // namespace
+
+std::vector<DampingRow> filling_damping_rows(const std::vector<LevelIdentification>& levels,
+                                             bool include_rational_fraction) {
     std::vector<DampingRow> rows;
     for (const auto& l : levels) {
-        const std::pair<Method, const ModalEstimate*> all[] = {
-            {Method::half_power, &l.half_power},
-            {Method::circle_fit, &l.circle_fit},
-            {Method::rational_fraction, &l.rational_fraction}};
-        for (const auto& [m, e] : all) {
-            if (!e->ok() || (m == Method::rational_fraction && !include_rational_fraction))
-                continue;
-            rows.push_back({l.arrangement, l.level_g, e->natural_frequency_hz, e->damping_ratio,
-                            std::string(to_string(m)), e->points_used, e->frequencies_used_hz,
-                            static_cast<int>(l.skipped_hz.size())});
+        for_each_estimate(l, include_rational_fraction, [&](Method m, const ModalEstimate& e) {
+            rows.push_back(row_of(l, m, e));
+            rows.back().filling = l.filling;
+        });
+    }
+    return rows;
+}
+
+std::vector<DampingRow> damping_rows(const std::vector<LevelIdentification>& levels,
+                                     bool include_rational_fraction) {
+    // Rows of every filling, gathered per arrangement, level and method in order of first
+    // appearance, then each group reduced to its mean and scatter.
+    using Key = std::tuple<std::string, double, std::string>;
+    std::vector<Key> order;
+    std::map<Key, std::vector<DampingRow>> groups;
+    for (const auto& row : filling_damping_rows(levels, include_rational_fraction)) {
+        const Key key{row.arrangement, row.level_g, row.method};
+        if (groups.find(key) == groups.end()) order.push_back(key);
+        groups[key].push_back(row);
+    }
+    std::vector<DampingRow> rows;
+    for (const auto& key : order) {
+        const auto& group = groups[key];
+        DampingRow r = group.front();
+        r.filling = -1;
+        r.fillings = static_cast<int>(group.size());
+        if (group.size() > 1) {
+            std::vector<double> f;
+            std::vector<double> zeta;
+            std::vector<double> used;
+            r.points_used = 0;
+            r.points_skipped = 0;
+            for (const auto& g : group) {
+                f.push_back(g.natural_frequency_hz);
+                zeta.push_back(g.damping_ratio);
+                r.points_used += g.points_used;
+                r.points_skipped += g.points_skipped;
+                used.insert(used.end(), g.frequencies_used_hz.begin(), g.frequencies_used_hz.end());
+            }
+            std::tie(r.natural_frequency_hz, r.natural_frequency_std_hz) = mean_and_spread(f);
+            std::tie(r.damping_ratio, r.damping_ratio_std) = mean_and_spread(zeta);
+            std::sort(used.begin(), used.end());
+            r.frequencies_used_hz = used;
         }
+        rows.push_back(std::move(r));
     }
     return rows;
 }

@@ -46,6 +46,7 @@ struct IdentifyOptions {
 struct LevelIdentification {
     std::string arrangement;
     double level_g = 0.0;  ///< [g]
+    int filling = 0;       ///< the filling of the bed whose points these are
     std::string channel;   ///< response channel used
     Frf frf;  ///< repeats averaged; force: response/reference, base: (resp − table)/table
     ModalEstimate half_power;
@@ -83,11 +84,15 @@ LevelIdentification identify_frf(const std::string& arrangement, double level_g,
 std::vector<LevelIdentification> identify_recording(const Recording& recording,
                                                     const IdentifyOptions& options = {});
 
-/// damping.csv rows of the successful estimates; methods half-power and circle-fit (the two
-/// formats.md lists) and, when `include_rational_fraction`, rational-fraction. Each row
-/// carries the estimate's points_used and frequencies_used_hz and the level's number of
-/// skipped points.
+/// damping.csv rows of the successful estimates, one per arrangement, level and method:
+/// over several fillings the mean frequency and damping with their sample standard deviation
+/// (the seed scatter; 0 for one filling); methods half-power and circle-fit (the two
+/// formats.md lists) and, when `include_rational_fraction`, rational-fraction.
 std::vector<DampingRow> damping_rows(const std::vector<LevelIdentification>& levels,
                                      bool include_rational_fraction = false);
+
+/// The same per filling (DampingRow::filling set), for a recording of several fillings.
+std::vector<DampingRow> filling_damping_rows(const std::vector<LevelIdentification>& levels,
+                                             bool include_rational_fraction = false);
 
 }  // namespace sb::identification

@@ -1,6 +1,7 @@
 // Plot data, gnuplot script and rendering (gnuplot is a program, not a library: it is run).
 #include "identification/plots.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -64,6 +65,22 @@ std::string level_title(double level_g) {
     return buf;
 }
 
+/// "1 g", or "1 g, filling 2" for the second and later fillings of the bed.
+std::string block_title(const LevelIdentification& l) {
+    std::string title = level_title(l.level_g) + " g";
+    if (l.filling > 0) title += ", filling " + std::to_string(l.filling);
+    return title;
+}
+
+/// Copies of the levels of one arrangement, for damping_rows.
+std::vector<LevelIdentification> arrangement_levels(
+    const std::vector<const LevelIdentification*>& items) {
+    std::vector<LevelIdentification> out;
+    out.reserve(items.size());
+    for (const auto* l : items) out.push_back(*l);
+    return out;
+}
+
 std::string form_name(FrfForm form) {
     switch (form) {
         case FrfForm::receptance:
@@ -107,28 +124,45 @@ PlotResult write_plots(const fs::path& out_dir, const std::vector<LevelIdentific
         const std::string name = file_safe(arrangement);
         std::ostringstream frf;
         std::ostringstream curve;
-        frf << "# frequency_hz magnitude phase_deg; one block per level\n";
-        curve << "# level zeta_half_power zeta_circle_fit zeta_rational_fraction "
-                 "fn_half_power_hz fn_circle_fit_hz fn_rational_fraction_hz\n";
-        bool method_has_value[3] = {false, false, false};
+        frf << "# frequency_hz magnitude phase_deg; one block per level (and filling of the bed)\n";
         for (std::size_t b = 0; b < items.size(); ++b) {
             const auto* l = items[b];
             if (b > 0) frf << "\n\n";
-            frf << "# level " << level_title(l->level_g) << '\n';
+            frf << "# level " << block_title(*l) << '\n';
             for (std::size_t i = 0; i < l->frf.frequency_hz.size(); ++i) {
                 const auto v = l->frf.value[i];
                 frf << number(l->frf.frequency_hz[i]) << ' ' << number(std::abs(v)) << ' '
                     << number(std::arg(v) * 180.0 / kPi) << '\n';
             }
-            const ModalEstimate* e[3] = {&l->half_power, &l->circle_fit, &l->rational_fraction};
-            const double nan = std::numeric_limits<double>::quiet_NaN();
-            curve << number(l->level_g);
-            for (int k = 0; k < 3; ++k) {
-                curve << ' ' << number(e[k]->ok() ? e[k]->damping_ratio * 100.0 : nan);
-                method_has_value[k] = method_has_value[k] || e[k]->ok();
+        }
+        // The curve: per level and method the mean over the fillings of the bed and its
+        // sample standard deviation (the seed scatter, drawn as error bars; 0 for one).
+        curve << "# level, then per method (half-power, circle-fit, rational-fraction): "
+                 "zeta_percent zeta_std_percent fn_hz fn_std_hz\n";
+        const auto rows = damping_rows(arrangement_levels(items), true);
+        std::vector<double> curve_levels;
+        for (const auto& r : rows) {
+            if (std::find(curve_levels.begin(), curve_levels.end(), r.level_g) ==
+                curve_levels.end()) {
+                curve_levels.push_back(r.level_g);
             }
+        }
+        bool method_has_value[3] = {false, false, false};
+        for (double level : curve_levels) {
+            curve << number(level);
             for (int k = 0; k < 3; ++k) {
-                curve << ' ' << number(e[k]->ok() ? e[k]->natural_frequency_hz : nan);
+                const auto row = std::find_if(rows.begin(), rows.end(), [&](const DampingRow& r) {
+                    return r.level_g == level && r.method == methods[k];
+                });
+                if (row == rows.end()) {
+                    curve << " NaN NaN NaN NaN";
+                    continue;
+                }
+                method_has_value[k] = true;
+                curve << ' ' << number(row->damping_ratio * 100.0) << ' '
+                      << number(row->damping_ratio_std * 100.0) << ' '
+                      << number(row->natural_frequency_hz) << ' '
+                      << number(row->natural_frequency_std_hz);
             }
             curve << '\n';
         }
@@ -147,14 +181,12 @@ PlotResult write_plots(const fs::path& out_dir, const std::vector<LevelIdentific
            << "\nset ylabel " << quoted("|" + form + "|") << "\nset logscale y\nplot ";
         for (std::size_t b = 0; b < items.size(); ++b) {
             gp << (b ? ", " : "") << quoted(frf_file.filename().string()) << " index " << b
-               << " using 1:2 with linespoints title "
-               << quoted(level_title(items[b]->level_g) + " g");
+               << " using 1:2 with linespoints title " << quoted(block_title(*items[b]));
         }
         gp << "\nunset logscale y\nset ylabel 'phase [deg]'\nset xlabel 'frequency [Hz]'\nplot ";
         for (std::size_t b = 0; b < items.size(); ++b) {
             gp << (b ? ", " : "") << quoted(frf_file.filename().string()) << " index " << b
-               << " using 1:3 with linespoints title "
-               << quoted(level_title(items[b]->level_g) + " g");
+               << " using 1:3 with linespoints title " << quoted(block_title(*items[b]));
         }
         gp << "\nunset multiplot\nunset xlabel\n";
         result.svg.push_back(frf_svg);
@@ -170,8 +202,9 @@ PlotResult write_plots(const fs::path& out_dir, const std::vector<LevelIdentific
             bool first = true;
             for (int k = 0; k < 3; ++k) {
                 if (!method_has_value[k]) continue;
+                const int column = 2 + 4 * k + 2 * pass;  // the mean; its std follows
                 gp << (first ? "" : ", ") << quoted(curve_file.filename().string())
-                   << " using 1:" << (2 + k + 3 * pass) << " with linespoints title "
+                   << " using 1:" << column << ':' << column + 1 << " with yerrorlines title "
                    << quoted(methods[k]);
                 first = false;
             }

@@ -1,4 +1,5 @@
 // points.csv reader and writer (formats.md), checked against the channels of recording.toml.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <fstream>
@@ -17,6 +18,8 @@ namespace sb::identification {
 namespace {
 const char* const kFixedColumns[] = {"arrangement", "level_g", "frequency_hz", "status", "series"};
 const char* const kSuffixes[] = {"_rms", "_re", "_im"};
+/// Optional: which filling of the bed a point belongs to (a campaign of several seeds).
+const char* const kFillingColumn = "filling";
 /// Optional per channel, as a pair: |X_2|/|X_1| and |X_3|/|X_1| (ChannelValue::h2_ratio,
 /// h3_ratio). Written after every channel's three value columns, so that the columns of a
 /// file without harmonics keep their positions.
@@ -110,6 +113,7 @@ void read_points_csv(const std::filesystem::path& path, Recording& rec) {
         col[h.text] = i;
         bool known = false;
         for (const char* c : kFixedColumns) known = known || h.text == c;
+        known = known || h.text == kFillingColumn;
         for (const auto& ch : rec.channels) {
             for (const char* s : kSuffixes) known = known || h.text == ch.name + s;
             for (const char* s : kHarmonicSuffixes) known = known || h.text == ch.name + s;
@@ -176,6 +180,16 @@ void read_points_csv(const std::filesystem::path& path, Recording& rec) {
                             "status '" + p.status +
                                 "' must be one of converged | limit-cycle-2 | closest | measured");
         }
+        if (const auto it = col.find(kFillingColumn); it != col.end()) {
+            const auto& cell = row[it->second];
+            const double filling =
+                cell.text.empty() ? 0.0 : detail::number(t, cell, kFillingColumn);
+            if (!(filling >= 0.0 && filling <= 1e6 && filling == std::floor(filling))) {
+                throw FileError(t.file, cell.line, cell.column,
+                                "filling '" + cell.text + "' must be a whole number >= 0");
+            }
+            p.filling = static_cast<int>(filling);
+        }
         p.series = row[c_se].text;
         if (!p.series.empty()) {
             p.history = load_series(t, row[c_se], path.parent_path(), p.frequency_hz, rec);
@@ -232,7 +246,9 @@ void write_points_csv(const std::filesystem::path& path, const Recording& rec) {
                            std::isfinite(p.values[c].h3_ratio);
         }
     }
-    f << "arrangement,level_g,frequency_hz,status,series";
+    const bool fillings = std::any_of(rec.points.begin(), rec.points.end(),
+                                      [](const PointRow& p) { return p.filling != 0; });
+    f << "arrangement,level_g,frequency_hz,status,series" << (fillings ? ",filling" : "");
     for (const auto& ch : rec.channels)
         f << ',' << ch.name << "_rms," << ch.name << "_re," << ch.name << "_im";
     for (std::size_t c = 0; c < rec.channels.size(); ++c) {
@@ -248,6 +264,7 @@ void write_points_csv(const std::filesystem::path& path, const Recording& rec) {
         detail::check_cell_text(p.series, "series");
         f << p.arrangement << ',' << exact_text(p.level_g) << ',' << exact_text(p.frequency_hz)
           << ',' << p.status << ',' << p.series;
+        if (fillings) f << ',' << p.filling;
         for (const auto& v : p.values) {
             f << ',' << exact_text(v.rms) << ',' << exact_text(v.amplitude.real()) << ','
               << exact_text(v.amplitude.imag());

@@ -66,6 +66,9 @@ struct PointRow {
     std::string series;                ///< time history path relative to the directory, or empty
     std::vector<ChannelValue> values;  ///< one per channel, in Recording::channels order
     TimeHistory history{};             ///< the series, loaded and checked; empty without one
+    /// Which filling of the particle bed (a campaign's seed offset) the point belongs to:
+    /// the points of one filling make one FRF per level [-].
+    int filling = 0;
 };
 
 /// One row of damping.csv.
@@ -81,6 +84,14 @@ struct DampingRow {
     std::vector<double> frequencies_used_hz{};
     /// Points of this arrangement and level with status `closest` left out of the FRF [-].
     int points_skipped = 0;
+    /// Fillings the estimate averages (each its own FRF and estimate); with several, the
+    /// frequency and damping are their means and the _std fields their sample standard
+    /// deviation (the seed scatter) [-].
+    int fillings = 1;
+    double natural_frequency_std_hz = 0.0;  ///< [Hz]
+    double damping_ratio_std = 0.0;         ///< [-]
+    /// The filling of a per-filling row; -1 for a row over every filling.
+    int filling = -1;
 };
 
 /// A whole recording directory.

@@ -124,7 +124,8 @@ TEST(CliIdentify, LeavesClosestPointsOutByDefaultSaysSoAndWritesWhichPointsWereU
     const auto csv = dir / "identified" / "damping.csv";
     EXPECT_EQ(file_text(csv).substr(0, file_text(csv).find('\n')),
               "arrangement,level_g,natural_frequency_hz,damping_ratio,method,points_used,"
-              "frequencies_used_hz,points_skipped");
+              "frequencies_used_hz,points_skipped,fillings,natural_frequency_std_hz,"
+              "damping_ratio_std");
     const auto rows = id::read_damping_csv(csv);
     ASSERT_EQ(rows.size(), 4u);  // 2 levels × half-power, circle-fit
     for (const auto& row : rows) {

@@ -28,6 +28,16 @@ inline std::string paper000_h0_with(const std::vector<std::pair<std::string, std
     return text;
 }
 
+/// `text` with the frequency grid kept as given: no frequencies added where the estimates
+/// are unresolved (for tests of something other than the grid).
+inline std::string without_refinement(std::string text) {
+    const std::string table = "[campaign.frequencies]\n";
+    const auto at = text.find(table);
+    EXPECT_NE(at, std::string::npos);
+    text.insert(at + table.size(), "refine_points = 0\n");
+    return text;
+}
+
 /// An empty directory for one test of this process: the process id keeps concurrent runs
 /// (other build trees, other users) from resuming each other's checkpoints.
 inline std::filesystem::path fresh_dir(const std::string& name) {

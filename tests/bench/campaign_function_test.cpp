@@ -71,7 +71,9 @@ TEST(CampaignFunction, InMemoryItGivesThePointsTheRecordingDirectoryHolds) {
     expect_same_points(direct.recording.points, written.points);
     EXPECT_EQ(direct.config_hash, config_hash(config));
     ASSERT_EQ(direct.levels.size(), 2u);
-    EXPECT_EQ(direct.summary.points, 10);
+    // Five frequencies per level and those the grid refinement adds.
+    EXPECT_GE(direct.summary.points, 10);
+    EXPECT_EQ(direct.summary.points, static_cast<int>(written.points.size()));
     EXPECT_EQ(direct.summary.resumed_points, 0);
 
     // A memory store: the second call takes every point from it and simulates nothing.
@@ -80,10 +82,45 @@ TEST(CampaignFunction, InMemoryItGivesThePointsTheRecordingDirectoryHolds) {
     stored.store = &memory;
     const CampaignResult first = run_campaign(config, stored);
     const CampaignResult again = run_campaign(config, stored);
-    EXPECT_EQ(again.summary.resumed_points, 10);
+    EXPECT_EQ(again.summary.resumed_points, direct.summary.points);
     EXPECT_EQ(again.summary.periods_simulated, 0);
     expect_same_points(again.recording.points, first.recording.points);
     expect_same_points(first.recording.points, written.points);
+}
+
+TEST(CampaignFunction, SeveralFillingsGiveTheirMeanAndScatterPerLevel) {
+    CampaignConfig config = small_dem_campaign();
+    set_value_text(config, "campaign.seeds", "3", "test");
+    CampaignContext context;
+    context.threads = 2;
+    context.selection = Selection::of(config, {}, {2.0});
+    const CampaignResult result = run_campaign(config, context);
+    ASSERT_EQ(result.sweeps.size(), 3u);
+    EXPECT_EQ(result.sweeps[1].key, result.sweeps[0].key + "_s1");
+    // One FRF, and its estimates, per filling.
+    ASSERT_EQ(result.levels.size(), 3u);
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(result.levels[static_cast<std::size_t>(k)].filling, k);
+    // The bed differs from filling to filling: so do the points.
+    EXPECT_NE(result.sweeps[0].rows.front().values[1].amplitude,
+              result.sweeps[1].rows.front().values[1].amplitude);
+    bool scatter = false;
+    for (const auto& row : result.recording.damping) {
+        EXPECT_EQ(row.filling, -1);
+        if (row.fillings < 2) continue;
+        // The mean of the fillings' own estimates, and their scatter.
+        double sum = 0.0;
+        int n = 0;
+        for (const auto& each : identification::filling_damping_rows(result.levels)) {
+            if (each.method == row.method) {
+                sum += each.damping_ratio;
+                ++n;
+            }
+        }
+        EXPECT_EQ(n, row.fillings);
+        EXPECT_NEAR(row.damping_ratio, sum / n, 1e-15);
+        scatter = scatter || row.damping_ratio_std > 0.0;
+    }
+    EXPECT_TRUE(scatter);
 }
 
 TEST(CampaignFunction, ASelectionRunsExactlyThePointsAskedFor) {
@@ -239,7 +276,8 @@ TEST(CampaignFunction, EnergyPerPointBalancesAndItsLayersAddUp) {
     const CampaignResult result = run_campaign(config, context);
     ASSERT_EQ(result.sweeps.size(), 1u);
     const auto& lines = result.sweeps.front().energy_log;
-    ASSERT_EQ(lines.size(), 5u);  // one damper, five points
+    ASSERT_GE(lines.size(), 5u);  // one damper: five points and any the refinement adds
+    EXPECT_EQ(lines.size(), result.sweeps.front().rows.size());
     for (const auto& line : lines) {
         std::vector<double> cells;
         std::stringstream in(line);

@@ -22,11 +22,11 @@ TEST(ResolvedConfig, WritesTheDefaultsTheConfigLeftOut) {
     ASSERT_EQ(raw.find("early_periods"), std::string::npos);
     const auto config = load_campaign_config_text(raw, "h0.toml");
     const std::string resolved = resolved_config_toml(config);
-    for (const char* line :
-         {"early_periods = 3", "drift_horizon_periods = 32", "point_start = \"previous-state\"",
-          "time_step_fraction = 0.05", "direction = \"up\"", "seed = 1",
-          "closest_rerun_periods = 4", "normal_stiffness = \"automatic\"",
-          "initial_amplitude = \"automatic\"", "wall_sliding_friction = 0.6"}) {
+    for (const char* line : {"early_periods = 3", "drift_horizon_periods = 32",
+                             "point_start = \"equivalent-steady-state\"",
+                             "time_step_fraction = 0.025", "direction = \"up\"", "seed = 1",
+                             "closest_rerun_periods = 4", "normal_stiffness = \"automatic\"",
+                             "initial_amplitude = \"automatic\"", "wall_sliding_friction = 0.6"}) {
         EXPECT_NE(resolved.find(std::string("\n") + line + "\n"), std::string::npos) << line << "\n"
                                                                                      << resolved;
     }

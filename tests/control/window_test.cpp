@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <complex>
 #include <vector>
 
 namespace sb::control {
@@ -22,6 +24,29 @@ TEST(AssessWindow, ValuesWithinTheToleranceAreSettledAtTheirMean) {
     EXPECT_EQ(r.state, WindowState::kSettled);
     EXPECT_NEAR(r.level, 1.005, kRounding);
     EXPECT_EQ(r.count, 4);
+}
+
+TEST(AssessWindow, ABeatingTransientWhosePhaseTurnsIsNotSettledThoughItsRmsBarelyMoves) {
+    // Steady response 1 plus a transient of amplitude 0.03 at the structure's own frequency,
+    // half a cycle per period away from the drive and in quadrature with the response: its
+    // phasor flips from +0.03i to -0.03i period by period. The RMS of each period,
+    // |1 +- 0.03i| = 1.00045, does not move; the phasors lie 0.06 apart, beyond the 5 %
+    // tolerance: not a steady state.
+    std::vector<double> rms;
+    std::vector<std::complex<double>> phasors;
+    for (int k = 0; k < 4; ++k) {
+        const std::complex<double> x(1.0, k % 2 == 0 ? 0.03 : -0.03);
+        phasors.push_back(x);
+        rms.push_back(std::abs(x));
+    }
+    ASSERT_EQ(assess_window(rms, 1.0, options()).state, WindowState::kSettled);
+    EXPECT_NE(assess_window(rms, 1.0, options(), phasors).state, WindowState::kSettled);
+    // A steady response with scatter well within the tolerance is settled by both tests.
+    const std::vector<std::complex<double>> steady{
+        {1.0, 0.0}, {1.01, 0.005}, {0.995, -0.01}, {1.0, 0.01}};
+    std::vector<double> steady_rms;
+    for (const auto& x : steady) steady_rms.push_back(std::abs(x));
+    EXPECT_EQ(assess_window(steady_rms, 1.0, options(), steady).state, WindowState::kSettled);
 }
 
 TEST(AssessWindow, OnlyTheNewestWindowPeriodsVote) {

@@ -40,6 +40,41 @@ Recording sdof_recording(double zeta_h, double zeta_l, double background) {
     return rec;
 }
 
+TEST(DampingCurve, EachFillingIsItsOwnFrfAndTheLevelReportsTheirMeanAndScatter) {
+    // Two fillings of one level with 2 % and 3 % damping: averaged as one FRF they would give
+    // neither; apart, each is exact, and the level's row is their mean with their scatter.
+    Recording rec = sdof_recording(0.02, 0.02, 0.0);
+    Recording other = sdof_recording(0.03, 0.03, 0.0);
+    std::erase_if(rec.points, [](const PointRow& p) { return p.level_g != 0.5; });
+    for (auto p : other.points) {
+        if (p.level_g != 0.5) continue;
+        p.filling = 1;
+        rec.points.push_back(p);
+    }
+    const auto levels = identify_recording(rec);
+    ASSERT_EQ(levels.size(), 2u);
+    EXPECT_EQ(levels[0].filling, 0);
+    EXPECT_EQ(levels[1].filling, 1);
+    EXPECT_NEAR(levels[0].circle_fit.damping_ratio, 0.02, kExactTolerance);
+    EXPECT_NEAR(levels[1].circle_fit.damping_ratio, 0.03, kExactTolerance);
+    const auto rows = damping_rows(levels);
+    ASSERT_EQ(rows.size(), 2u);  // half-power and circle fit, over both fillings
+    for (const auto& row : rows) {
+        EXPECT_EQ(row.fillings, 2) << row.method;
+        EXPECT_NEAR(row.damping_ratio, 0.025, kExactTolerance) << row.method;
+        // Sample standard deviation of 0.02 and 0.03: 0.01 / sqrt(2).
+        EXPECT_NEAR(row.damping_ratio_std, 0.01 / std::sqrt(2.0), kExactTolerance) << row.method;
+        EXPECT_NEAR(row.natural_frequency_hz, 6.37, 1e-6 * 6.37);
+        EXPECT_EQ(row.filling, -1);
+    }
+    const auto each = filling_damping_rows(levels);
+    ASSERT_EQ(each.size(), 4u);
+    EXPECT_EQ(each[0].filling, 0);
+    EXPECT_EQ(each[2].filling, 1);
+    EXPECT_NEAR(each[2].damping_ratio, 0.03, kExactTolerance);
+    EXPECT_EQ(each[2].fillings, 1);
+}
+
 TEST(DampingCurve, IdentifiesEveryLevelByEveryMethodAndSubtractsTheRigBackground) {
     IdentifyOptions options;
     options.background_damping_ratio = 0.002;

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -68,6 +69,44 @@ TEST(Plots, WriteOneDataBlockPerLevelAndAScriptThatNamesEveryLevel) {
     }
     ASSERT_EQ(r.svg.size(), 2u);
     EXPECT_EQ(r.svg[0], dir / "H-0-frf.svg");
+}
+
+TEST(Plots, SeveralFillingsOfALevelGiveOneCurvePointWithTheirScatterAsErrorBars) {
+    // Two fillings at 1 g: damping 2 % and 4 %, the same frequency.
+    std::vector<LevelIdentification> levels;
+    const double zetas[] = {0.02, 0.04};
+    for (int k = 0; k < 2; ++k) {
+        const auto frf = testing::modal_accelerance(
+            testing::grid_around(6.4, zetas[k], 31, 4.0, 0.2), {{6.4, zetas[k], 1.0}});
+        levels.push_back(identify_frf("H-0", 1.0, frf, {}, true));
+        levels.back().filling = k;
+    }
+    const auto dir = fresh_dir("fillings");
+    PlotOptions options;
+    options.render = false;
+    const auto r = write_plots(dir, levels, options);
+    // The FRF of each filling, the second named by its filling.
+    const auto frf = text_of(dir / "plots" / "H-0-frf.dat");
+    EXPECT_EQ(count(frf, "# level "), 2);
+    EXPECT_EQ(count(frf, "# level 1 g, filling 1"), 1);
+    // One row for the level: the mean damping 3 % and the sample std sqrt(2) %.
+    std::istringstream damping(text_of(dir / "plots" / "H-0-damping.dat"));
+    std::string header;
+    std::getline(damping, header);
+    double level = 0.0;
+    double zeta_percent = 0.0;
+    double zeta_std_percent = 0.0;
+    damping >> level >> zeta_percent >> zeta_std_percent;
+    EXPECT_EQ(level, 1.0);
+    EXPECT_NEAR(zeta_percent, 3.0, 0.03);
+    EXPECT_NEAR(zeta_std_percent, std::sqrt(2.0), 0.03);
+    std::string rest;
+    std::getline(damping, rest);
+    std::string more;
+    EXPECT_FALSE(std::getline(damping, more) && !more.empty()) << "one row per level";
+    const auto script = text_of(r.script);
+    EXPECT_GT(count(script, "yerrorlines"), 0);
+    EXPECT_GT(count(script, "'1 g, filling 1'"), 0);
 }
 
 TEST(Plots, GnuplotMakesSvgsWithOneCurvePerLevelAndPerMethod) {

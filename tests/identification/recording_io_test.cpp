@@ -280,6 +280,38 @@ TEST(RecordingIo, HarmonicRatiosRoundTripExactlyInColumnsAfterEveryChannelsValue
     EXPECT_EQ(back.points[1].values[1].h3_ratio, 2.0 / 7.0);
 }
 
+TEST(RecordingIo, TheFillingOfEachPointRoundTripsAndIsOptionalOnRead) {
+    const auto dir = fs::temp_directory_path() / "sb_identification_recording_test" / "fillings";
+    fs::remove_all(dir);
+    Recording rec = harmonic_recording();
+    rec.points[1].filling = 3;
+    write_recording(dir, rec);
+    EXPECT_EQ(first_line(dir / "points.csv")
+                  .rfind("arrangement,level_g,frequency_hz,status,series,filling,force_rms", 0),
+              0u);
+    const auto back = read_recording(dir);
+    EXPECT_EQ(back.points[0].filling, 0);
+    EXPECT_EQ(back.points[1].filling, 3);
+    // A recording of one filling writes no such column, and one without it reads as filling 0.
+    const auto plain = fs::temp_directory_path() / "sb_identification_recording_test" / "one";
+    fs::remove_all(plain);
+    write_recording(plain, harmonic_recording());
+    EXPECT_EQ(first_line(plain / "points.csv").find("filling"), std::string::npos);
+    EXPECT_EQ(read_recording(plain).points[1].filling, 0);
+    // A filling that is not a whole number >= 0 is an error at its cell.
+    std::string header = kHeader;
+    header.insert(header.find(",force_rms"), ",filling");
+    try {
+        read_recording(make_dir("bad-filling", kToml,
+                                header + "H-0,0.5,6.3,converged,,-1,1.2,1.5,0.1,4.9,0.3,6.9\n"));
+        FAIL() << "a negative filling was accepted";
+    } catch (const FileError& e) {
+        EXPECT_NE(std::string(e.what()).find("filling '-1' must be a whole number >= 0"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(RecordingIo, HarmonicColumnsAreOptionalOnReadButComeAsAPair) {
     // Without the columns (another tool's file): not known.
     auto rec = read_recording(
@@ -361,7 +393,8 @@ TEST(RecordingIo, DampingCsvRoundTripsWhichPointsEachEstimateUsed) {
     write_damping_csv(file, rows);
     EXPECT_EQ(first_line(file),
               "arrangement,level_g,natural_frequency_hz,damping_ratio,method,points_used,"
-              "frequencies_used_hz,points_skipped");
+              "frequencies_used_hz,points_skipped,fillings,natural_frequency_std_hz,"
+              "damping_ratio_std");
     const auto back = read_damping_csv(file);
     ASSERT_EQ(back.size(), 2u);
     for (std::size_t i = 0; i < 2; ++i) {
