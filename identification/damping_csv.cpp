@@ -1,8 +1,10 @@
 // damping.csv reader and writer (formats.md).
 #include <charconv>
 #include <fstream>
+#include <sstream>
 #include <string_view>
 
+#include "core/text_file.hpp"
 #include "identification/csv_table.hpp"
 #include "identification/file_error.hpp"
 #include "identification/recording_io.hpp"
@@ -112,8 +114,7 @@ std::vector<DampingRow> read_damping_csv(const std::filesystem::path& path) {
 }
 
 void write_damping_csv(const std::filesystem::path& path, const std::vector<DampingRow>& rows) {
-    std::ofstream f(path, std::ios::binary);
-    if (!f) throw FileError(path.string(), 0, 0, "cannot open the file for writing");
+    std::ostringstream f;
     // The columns of older files first, in their order, so that they keep their positions.
     f << "arrangement,level_g,natural_frequency_hz,damping_ratio,method,points_used,"
          "frequencies_used_hz,points_skipped\n";
@@ -129,6 +130,7 @@ void write_damping_csv(const std::filesystem::path& path, const std::vector<Damp
         }
         f << ',' << r.points_skipped << '\n';
     }
+    write_file_atomically(path, f.str());
 }
 
 }  // namespace sb::identification
