@@ -15,6 +15,7 @@
 #include <string>
 
 #include "config/errors.hpp"
+#include "core/text_file.hpp"
 #include "identification/damping_curve.hpp"
 #include "identification/file_error.hpp"
 #include "identification/plots.hpp"
@@ -245,6 +246,10 @@ void register_identify_command(CLI::App& app, int& exit_code) {
         } catch (const fs::filesystem_error& e) {
             std::cerr << "identify: " << e.what() << '\n';
             exit_code = kExitBadInput;
+        } catch (const FileWriteError& e) {
+            // Not bad input: the same command succeeds once the disk has room.
+            std::cerr << "identify: " << e.what() << '\n';
+            exit_code = config::kExitFailure;
         }
     });
 }

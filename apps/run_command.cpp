@@ -1,11 +1,15 @@
 // `shakerbench run`: runs or resumes a campaign and writes its recording directory.
 #include "run_command.hpp"
 
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <string>
+#include <system_error>
 
 #include "bench/campaign.hpp"
+#include "bench/sweep_checkpoint.hpp"
 #include "config/errors.hpp"
 #include "core/text_file.hpp"
 #include "dem/solver.hpp"
@@ -24,6 +28,20 @@ struct RunOptions {
     std::vector<std::string> overrides;
     std::string command_line;
 };
+
+/// What became of the finished points when the run could not write, and the way out.
+std::string kept_points(const std::filesystem::path& out_dir, const std::string& remedy) {
+    const auto dir = out_dir / "checkpoints";
+    std::error_code error;
+    bool any = false;
+    for (auto it = std::filesystem::directory_iterator(dir, error);
+         !error && it != std::filesystem::directory_iterator(); it.increment(error)) {
+        any = any || it->path().extension() == ".txt";
+    }
+    if (!any) return "no point was finished: " + remedy + " and run again";
+    return "finished points are kept in " + dir.string() + ": " + remedy +
+           " and run again to resume";
+}
 
 int run(const RunOptions& options) {
     int exit_code = 0;
@@ -58,6 +76,21 @@ int run(const RunOptions& options) {
     } catch (const identification::FileError& e) {
         std::cerr << "shakerbench run: " << e.what() << '\n';
         return config::kExitBadInput;
+    } catch (const bench::CheckpointError& e) {
+        std::cerr << "shakerbench run: " << e.what() << "\nshakerbench run: that checkpoint cannot "
+                  << "be resumed: delete " << e.file()
+                  << " to compute its sweep again, or run again with --restart to start over.\n";
+        return config::kExitBadInput;
+    } catch (const FileWriteError& e) {
+        // Not bad input: the same run succeeds once the disk has room or the folder is writable.
+        std::cerr << "shakerbench run: " << e.what() << "; "
+                  << kept_points(run.out_dir, e.out_of_space() ? "free space" : "make it writable")
+                  << '\n';
+        return config::kExitFailure;
+    } catch (const std::filesystem::filesystem_error& e) {
+        std::cerr << "shakerbench run: " << e.what() << "; "
+                  << kept_points(run.out_dir, "remove the cause") << '\n';
+        return config::kExitFailure;
     } catch (const dem::SimulationError& e) {
         std::cerr << "shakerbench run: simulation failed: " << e.what()
                   << "\nFinished points are kept in " << run.out_dir.string()

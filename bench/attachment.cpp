@@ -1,6 +1,8 @@
 // Attachments: the DEM damper and the rigid particles.
 #include "bench/attachment.hpp"
 
+#include <stdexcept>
+
 #include "dem/setup.hpp"
 
 namespace sb::bench {
@@ -58,13 +60,23 @@ AttachmentState DemDamper::state_at(const PointMotion& motion) {
     return {solver_->state()};
 }
 
+namespace {
+const dem::SolverState& dem_state(const AttachmentState& state) {
+    if (!state.dem) {
+        throw std::invalid_argument("a DEM damper's state must hold its particles, it holds none");
+    }
+    return *state.dem;
+}
+}  // namespace
+
 void DemDamper::restore(const AttachmentState& state) {
     // At the state's own pose the solver continues bitwise as if never interrupted.
-    solver_ = std::make_unique<dem::Solver>(options_, *state.dem, state.dem->enclosure);
+    const dem::SolverState& s = dem_state(state);
+    solver_ = std::make_unique<dem::Solver>(options_, s, s.enclosure);
 }
 
 void DemDamper::restore_at(const AttachmentState& state, const PointMotion& motion) {
-    solver_ = std::make_unique<dem::Solver>(options_, *state.dem, enclosure(motion));
+    solver_ = std::make_unique<dem::Solver>(options_, dem_state(state), enclosure(motion));
 }
 
 PointLoad step(Attachment& attachment, const PointMotion& motion, double dt_s) {

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <variant>
 #include <vector>
@@ -82,8 +83,16 @@ struct RigidParticles {
     [[nodiscard]] PointLoad weight() const { return {}; }
     [[nodiscard]] AttachmentState state() const { return {}; }
     [[nodiscard]] AttachmentState state_at(const PointMotion&) const { return {}; }
-    void restore(const AttachmentState&) {}
-    void restore_at(const AttachmentState&, const PointMotion&) {}
+    void restore(const AttachmentState& s) { no_particles(s); }
+    void restore_at(const AttachmentState& s, const PointMotion&) { no_particles(s); }
+
+  private:
+    /// Particles in the state of a rigid mass belong to another model: never ignored.
+    static void no_particles(const AttachmentState& s) {
+        if (s.dem) {
+            throw std::invalid_argument("rigid particles carry no state, this one holds particles");
+        }
+    }
 };
 
 using AttachmentModel = std::variant<DemDamper, RigidParticles>;

@@ -92,7 +92,7 @@ std::string energy_csv_header(int layers) {
 void write_campaign_output(const CampaignConfig& config, const CampaignResult& result,
                            const RecordingDirectory& directory) {
     const fs::path& out_dir = directory.out_dir;
-    fs::create_directories(out_dir);
+    create_directories_for_writing(out_dir);
     id::write_recording(out_dir, result.recording);
     if (result.recording.damping.empty()) {
         // No estimate resolved: the file is there all the same, with its header.

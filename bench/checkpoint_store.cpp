@@ -19,14 +19,18 @@ void FileCheckpointStore::open(const std::string& config_hash, bool restart) {
     if (restart) {
         // Everything computed for another config, or for this one from the start.
         for (const char* dir : {"checkpoints", "settled", "series", "vtk"}) {
-            fs::remove_all(directory_ / dir);
+            std::error_code error;
+            fs::remove_all(directory_ / dir, error);
+            if (error) throw FileWriteError(directory_ / dir, error);
         }
-        return;
     }
-    // Checkpoints another config wrote would be taken as this config's results.
+    check_writable();
+    remove_partial_files();
+    if (restart) return;
+    // A checkpoint another config wrote would be taken as this config's results, a damaged
+    // one would be resumed from whatever its damage left: both are refused before anything
+    // runs, every file at once.
     const fs::path dir = directory_ / "checkpoints";
-    std::error_code ec;
-    if (!fs::is_directory(dir, ec)) return;
     std::vector<fs::path> files;
     for (const auto& entry : fs::directory_iterator(dir)) {
         if (entry.is_regular_file() && entry.path().extension() == ".txt") {
@@ -34,21 +38,70 @@ void FileCheckpointStore::open(const std::string& config_hash, bool restart) {
         }
     }
     std::sort(files.begin(), files.end());
+    const std::string way_out = "nothing was simulated: run again with --restart to discard " +
+                                directory_.string() + "'s checkpoints and settled beds, or give " +
+                                "another --out";
     std::vector<config::ConfigError> problems;
     for (const auto& file : files) {
-        const std::string found = checkpoint_config_hash(read_text_file(file));
-        if (found == config_hash) continue;
         config::ConfigError e;
         e.file = file.string();
-        e.key_path = "config_hash";
-        e.value = found.empty() ? "(none: an older checkpoint format)" : "\"" + found + "\"";
-        e.constraint =
-            "was written by another config; this config's hash is \"" + config_hash + "\"";
-        e.meaning = "nothing was simulated: run again with --restart to discard " +
-                    directory_.string() + "'s checkpoints and settled beds, or give another --out";
+        try {
+            const SweepCheckpoint checkpoint =
+                parse_checkpoint(read_text_file(file), file.string());
+            if (checkpoint.config_hash == config_hash) continue;
+            e.key_path = "config_hash";
+            e.value = "\"" + checkpoint.config_hash + "\"";
+            e.constraint =
+                "was written by another config; this config's hash is \"" + config_hash + "\"";
+            e.meaning = way_out;
+        } catch (const CheckpointError& damaged) {
+            e.key_path = "(checkpoint)";
+            e.constraint = (damaged.line() > 0 ? "line " + std::to_string(damaged.line()) + ": "
+                                               : std::string()) +
+                           damaged.message();
+            e.meaning = "cannot be resumed: delete " + file.string() +
+                        " to compute that sweep again, or run again with --restart to discard " +
+                        "every checkpoint of " + directory_.string();
+        }
         problems.push_back(std::move(e));
     }
     if (!problems.empty()) throw config::ConfigException(std::move(problems));
+}
+
+void FileCheckpointStore::check_writable() const {
+    // A directory that cannot take a checkpoint is refused before anything is simulated,
+    // rather than after the first point.
+    const fs::path dir = directory_ / "checkpoints";
+    create_directories_for_writing(dir);
+    const fs::path probe = dir / ".write-probe";
+    try {
+        write_file_atomically(probe, "");
+    } catch (const FileWriteError& e) {
+        throw FileWriteError(dir, e.reason());
+    }
+    std::error_code ignored;
+    fs::remove(probe, ignored);
+}
+
+void FileCheckpointStore::remove_partial_files() const {
+    // What a run killed while writing left in the store's folders: never read, and not part of
+    // a recording. Only these folders: the recording directory may be any folder, whose other
+    // .partial files are not ours (those of the recording's own files are overwritten by the
+    // next write of the same file).
+    std::vector<fs::path> partial;
+    for (const char* dir : {"checkpoints", "settled", "series", "vtk"}) {
+        std::error_code error;
+        for (auto it = fs::directory_iterator(directory_ / dir, error);
+             !error && it != fs::directory_iterator(); it.increment(error)) {
+            if (it->path().extension() == ".partial") partial.push_back(it->path());
+        }
+    }
+    std::error_code ignored;
+    for (const auto& file : partial) fs::remove(file, ignored);
+}
+
+std::string FileCheckpointStore::checkpoint_name(const std::string& sweep_key) const {
+    return (directory_ / "checkpoints" / (sweep_key + ".txt")).string();
 }
 
 std::optional<std::string> FileCheckpointStore::load_checkpoint(const std::string& sweep_key) {
@@ -74,7 +127,7 @@ void FileCheckpointStore::save_bed(const std::string& bed_key, const std::string
 
 void FileCheckpointStore::save_file(const std::string& relative_path, const std::string& text) {
     const fs::path file = directory_ / relative_path;
-    fs::create_directories(file.parent_path());
+    create_directories_for_writing(file.parent_path());
     write_file_atomically(file, text);
 }
 

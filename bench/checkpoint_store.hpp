@@ -36,15 +36,27 @@ class CheckpointStore {
     /// A file a point produces (a series, a bed snapshot), by its path relative to the
     /// recording directory ("series/H-0_1g_3.csv").
     virtual void save_file(const std::string& relative_path, const std::string& text) = 0;
+
+    /// How messages name a sweep's checkpoint (its file, for a file store).
+    [[nodiscard]] virtual std::string checkpoint_name(const std::string& sweep_key) const {
+        return sweep_key;
+    }
 };
 
 /// Checkpoints in DIR/checkpoints/<sweep>.txt, beds in DIR/settled/<bed>_<hash>.csv, files
 /// under DIR: the recording directory the CLI writes. Every file goes through a rename, so a
-/// kill never leaves half of one.
+/// kill never leaves half of one; a file that cannot be written throws sb::FileWriteError
+/// naming it, and the files written before stay as they were.
 class FileCheckpointStore : public CheckpointStore {
   public:
     explicit FileCheckpointStore(std::filesystem::path directory);
+    /// Besides refusing another config's checkpoints: refuses (config::ConfigException, every
+    /// file named, nothing simulated) a checkpoint that is damaged (bench::CheckpointError:
+    /// cut short, corrupted, of another format); throws sb::FileWriteError when DIR/checkpoints
+    /// cannot be written; removes the FILE.partial files a killed run left in checkpoints/,
+    /// settled/, series/ and vtk/.
     void open(const std::string& config_hash, bool restart) override;
+    [[nodiscard]] std::string checkpoint_name(const std::string& sweep_key) const override;
     std::optional<std::string> load_checkpoint(const std::string& sweep_key) override;
     void save_checkpoint(const std::string& sweep_key, const std::string& text) override;
     std::optional<std::string> load_bed(const std::string& bed_key) override;
@@ -53,6 +65,9 @@ class FileCheckpointStore : public CheckpointStore {
     [[nodiscard]] const std::filesystem::path& directory() const { return directory_; }
 
   private:
+    void check_writable() const;
+    void remove_partial_files() const;
+
     std::filesystem::path directory_;
     std::string hash_;
 };

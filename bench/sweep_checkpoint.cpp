@@ -1,13 +1,26 @@
 // Sweep checkpoints: exact text form of a sweep's progress and state.
 #include "bench/sweep_checkpoint.hpp"
 
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
+
+#include "config/write.hpp"
 
 namespace sb::bench {
 namespace {
 
-constexpr const char* kMagic = "shakerbench-sweep-checkpoint 3";
+/// The first line. Format 4 added the checksum line.
+constexpr const char* kMagic = "shakerbench-sweep-checkpoint 4";
+constexpr std::string_view kMagicPrefix = "shakerbench-sweep-checkpoint ";
+/// The last line: the 64-bit FNV-1a of every byte before it. A file cut short, or with a byte
+/// changed on disk, fails it; the rename that writes a checkpoint never leaves half a file, but
+/// a disk or a copy can.
+constexpr std::string_view kChecksumKey = "checksum fnv1a64 ";
+/// Sizes no sweep reaches: a count past them is damage, not a reason to allocate.
+constexpr long long kMaxVectorSize = 100000;
+constexpr long long kMaxCount = 100000000;
+constexpr long long kMaxPoints = 1000000;
 
 class Writer {
   public:
@@ -39,18 +52,30 @@ class Reader {
   public:
     Reader(const std::string& text, std::string file) : in_(text), file_(std::move(file)) {}
 
-    /// Next line, which must start with `key`; its remaining words follow in `rest`.
+    /// Next line, which must start with the word `key`; its remaining words follow.
     std::istringstream line(const std::string& key) {
         std::string l;
         if (!std::getline(in_, l)) {
             fail("ends early, expected '" + key + "'");
         }
         ++line_;
-        if (l.rfind(key, 0) != 0) {
+        // The whole word: "p" (a particle) must not take a "pairs" line.
+        if (l.rfind(key, 0) != 0 ||
+            (l.size() > key.size() && l[key.size()] != ' ' && l[key.size()] != '\t')) {
             fail("expected '" + key + "'");
         }
         current_ = l;
         return std::istringstream(l.substr(key.size()));
+    }
+    /// The text after the first tab of the current line (empty when there is none).
+    std::string text() const {
+        const auto tab = current_.find('\t');
+        return tab == std::string::npos ? std::string() : current_.substr(tab + 1);
+    }
+    /// Nothing may follow the values a line announces: more would be read as nothing.
+    void end(std::istringstream& words) {
+        std::string w;
+        if (words >> w) fail("'" + w + "' follows the values of '" + first_word() + "'");
     }
     double num(std::istringstream& words) {
         std::string w;
@@ -72,12 +97,18 @@ class Reader {
         return v;
     }
     [[noreturn]] void fail(const std::string& message) const {
-        throw std::runtime_error(file_ + ":" + std::to_string(line_) + ": " + message +
-                                 " (a damaged checkpoint: delete it to recompute that sweep)");
+        throw CheckpointError(file_, line_, message);
     }
     const std::string& current() const { return current_; }
+    /// Whatever follows the line just read.
+    bool at_end() {
+        std::string rest;
+        return !std::getline(in_, rest);
+    }
 
   private:
+    std::string first_word() const { return current_.substr(0, current_.find_first_of(" \t")); }
+
     std::istringstream in_;
     std::string file_;
     std::string current_;
@@ -95,13 +126,14 @@ void write_vector(Writer& w, const char* key, const Eigen::VectorXd& v) {
 Eigen::VectorXd read_vector(Reader& r, const char* key) {
     auto words = r.line(key);
     const long long n = r.integer(words);
-    if (n < 0 || n > 100000) {
-        r.fail("implausible size");
+    if (n < 0 || n > kMaxVectorSize) {
+        r.fail("implausible size " + std::to_string(n));
     }
     Eigen::VectorXd v(n);
     for (long long i = 0; i < n; ++i) {
         v[i] = r.num(words);
     }
+    r.end(words);
     return v;
 }
 
@@ -170,7 +202,8 @@ std::uint32_t read_id(Reader& r, std::istringstream& words) {
 long long read_count(Reader& r, const char* key) {
     auto words = r.line(key);
     const long long n = r.integer(words);
-    if (n < 0 || n > 100000000) r.fail("implausible count");
+    if (n < 0 || n > kMaxCount) r.fail("implausible count " + std::to_string(n));
+    r.end(words);
     return n;
 }
 
@@ -184,6 +217,7 @@ dem::SolverState read_dem_state(Reader& r) {
         }
         s.enclosure.velocity_m_s = read_vector3(r, words);
         s.enclosure.angular_velocity_rad_s = read_vector3(r, words);
+        r.end(words);
     }
     const long long particles = read_count(r, "particles");
     for (long long i = 0; i < particles; ++i) {
@@ -192,6 +226,7 @@ dem::SolverState read_dem_state(Reader& r) {
         s.radii_m.push_back(r.num(words));
         s.velocities_m_s.push_back(read_vector3(r, words));
         s.angular_velocities_rad_s.push_back(read_vector3(r, words));
+        r.end(words);
     }
     const long long pairs = read_count(r, "pairs");
     for (long long i = 0; i < pairs; ++i) {
@@ -200,6 +235,7 @@ dem::SolverState read_dem_state(Reader& r) {
         h.i = read_id(r, words);
         h.j = read_id(r, words);
         h.history_m = read_vector3(r, words);
+        r.end(words);
         s.pair_histories.push_back(h);
     }
     const long long walls = read_count(r, "walls");
@@ -209,6 +245,7 @@ dem::SolverState read_dem_state(Reader& r) {
         h.particle = read_id(r, words);
         h.wall = read_id(r, words);
         h.history_m = read_vector3(r, words);
+        r.end(words);
         s.wall_histories.push_back(h);
     }
     const long long locked = read_count(r, "locked");
@@ -217,17 +254,22 @@ dem::SolverState read_dem_state(Reader& r) {
         dem::LockedParticle l;
         l.id = read_id(r, words);
         l.position_m = read_vector3(r, words);
+        r.end(words);
         s.locked.push_back(l);
     }
     {
         auto words = r.line("clock");
-        s.released = r.integer(words) != 0;
+        const long long released = r.integer(words);
+        if (released != 0 && released != 1) r.fail("released must be 0 or 1");
+        s.released = released == 1;
         s.time_s = r.num(words);
         s.step = r.integer(words);
+        r.end(words);
     }
     {
         auto words = r.line("layers");
         s.layers_up = read_vector3(r, words);
+        r.end(words);
     }
     return s;
 }
@@ -276,49 +318,123 @@ std::string serialize_checkpoint(const SweepCheckpoint& c) {
         w.key("e").text(l).end();
     }
     w.key("end").end();
-    return w.str();
+    return seal_checkpoint(w.str());
 }
 
+CheckpointError::CheckpointError(std::string file, int line, std::string message)
+    : std::runtime_error(file + ":" + (line > 0 ? std::to_string(line) + ":" : std::string()) +
+                         " " + message),
+      file_(std::move(file)),
+      line_(line),
+      message_(std::move(message)) {}
+
+std::string seal_checkpoint(std::string_view content) {
+    std::string text(content);
+    text += kChecksumKey;
+    text += config::fnv1a_hex(content);
+    text += '\n';
+    return text;
+}
+
+std::string_view checkpoint_content(std::string_view text) {
+    if (text.empty() || text.back() != '\n') return text;
+    const auto previous = text.find_last_of('\n', text.size() - 2);
+    const std::size_t start = previous == std::string_view::npos ? 0 : previous + 1;
+    if (text.substr(start).rfind(kChecksumKey, 0) != 0) return text;
+    return text.substr(0, start);
+}
+
+namespace {
+
+/// The checksum first: a damaged file is reported as such, not as whatever its damage makes
+/// the first unreadable line look like.
+void check_sealed(const std::string& text, const std::string& file) {
+    if (text.rfind(kMagicPrefix, 0) != 0) {
+        throw CheckpointError(
+            file, 1,
+            "not a checkpoint: it does not start with '" + std::string(kMagicPrefix) + "'");
+    }
+    const std::string first = text.substr(0, text.find('\n'));
+    if (first != kMagic) {
+        throw CheckpointError(file, 1,
+                              "checkpoint format '" + first.substr(kMagicPrefix.size()) +
+                                  "', this shakerbench reads format '" +
+                                  std::string(kMagic).substr(kMagicPrefix.size()) + "'");
+    }
+    const std::string_view content = checkpoint_content(text);
+    if (content.size() == text.size()) {
+        const auto lines = std::count(text.begin(), text.end(), '\n') +
+                           (text.empty() || text.back() == '\n' ? 0 : 1);
+        throw CheckpointError(file, static_cast<int>(lines),
+                              "truncated: the file ends without its checksum line (cut short)");
+    }
+    const std::string expected = config::fnv1a_hex(content);
+    const std::string_view found =
+        std::string_view(text).substr(content.size() + kChecksumKey.size());
+    if (found.substr(0, found.size() - 1) != expected) {
+        throw CheckpointError(file, 0,
+                              "corrupted: its content does not match the checksum on its last "
+                              "line (the content gives " +
+                                  expected + ")");
+    }
+}
+
+}  // namespace
+
 SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& file_name) {
-    Reader r(text, file_name);
+    check_sealed(text, file_name);
+    Reader r(std::string(checkpoint_content(text)), file_name);
     SweepCheckpoint c;
     r.line(kMagic);
-    {
-        r.line("config_hash");
-        const auto tab = r.current().find('\t');
-        c.config_hash = tab == std::string::npos ? "" : r.current().substr(tab + 1);
-    }
+    r.line("config_hash");
+    c.config_hash = r.text();
     {
         auto words = r.line("points_done");
-        c.points_done = static_cast<int>(r.integer(words));
+        const long long done = r.integer(words);
+        if (done < 0 || done > kMaxPoints)
+            r.fail("implausible points_done " + std::to_string(done));
+        c.points_done = static_cast<int>(done);
+        r.end(words);
     }
     {
         auto words = r.line("next_amplitude");
         c.next_amplitude = r.num(words);
+        r.end(words);
     }
     c.state.q = read_vector(r, "q");
     c.state.q_dot = read_vector(r, "q_dot");
+    if (c.state.q.size() != c.state.q_dot.size()) {
+        r.fail("q_dot has " + std::to_string(c.state.q_dot.size()) + " values, q " +
+               std::to_string(c.state.q.size()));
+    }
     const long long attachments = read_count(r, "attachments");
     for (long long d = 0; d < attachments; ++d) {
         r.line("attachment");
-        const auto tab = r.current().find('\t');
-        const std::string kind = tab == std::string::npos ? "" : r.current().substr(tab + 1);
+        const std::string kind = r.text();
         if (kind != "dem" && kind != "none") r.fail("unknown attachment '" + kind + "'");
         auto load = r.line("load");
         Eigen::Matrix<double, 6, 1> l;
         for (int k = 0; k < 6; ++k) l[k] = r.num(load);
+        r.end(load);
         c.state.loads.push_back(l);
         AttachmentState a;
         if (kind == "dem") a.dem = read_dem_state(r);
         c.state.attachments.push_back(std::move(a));
     }
     const long long rows = read_count(r, "rows");
+    if (rows != c.points_done) {
+        r.fail(std::to_string(rows) + " rows for " + std::to_string(c.points_done) +
+               " finished points");
+    }
     for (long long i = 0; i < rows; ++i) {
         auto words = r.line("row");
         identification::PointRow row;
         row.level_g = r.num(words);
         row.frequency_hz = r.num(words);
         const long long values = r.integer(words);
+        if (values < 0 || values > kMaxVectorSize) {
+            r.fail("implausible number of channels " + std::to_string(values));
+        }
         for (long long k = 0; k < values; ++k) {
             identification::ChannelValue v;
             v.rms = r.num(words);
@@ -329,14 +445,20 @@ SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& fil
             v.h3_ratio = r.num(words);
             row.values.push_back(v);
         }
+        // The numbers end where the tab-separated texts begin.
         std::string rest;
         std::getline(words, rest);
         std::istringstream fields(rest);
-        std::string skip;
-        std::getline(fields, skip, '\t');
+        std::string numbers_left;
+        std::getline(fields, numbers_left, '\t');
+        if (numbers_left.find_first_not_of(' ') != std::string::npos) {
+            r.fail("more numbers than the " + std::to_string(values) + " channels announced");
+        }
+        std::string extra;
         if (!std::getline(fields, row.arrangement, '\t') ||
-            !std::getline(fields, row.status, '\t') || !std::getline(fields, row.series, '\t')) {
-            r.fail("a row lacks its arrangement, status or series");
+            !std::getline(fields, row.status, '\t') || !std::getline(fields, row.series, '\t') ||
+            std::getline(fields, extra, '\t')) {
+            r.fail("a row holds its arrangement, status and series, and nothing more");
         }
         if (row.series == "-") {
             row.series.clear();
@@ -344,18 +466,24 @@ SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& fil
         c.rows.push_back(std::move(row));
     }
     const long long logs = read_count(r, "log");
+    if (logs != c.points_done) {
+        r.fail(std::to_string(logs) + " control log lines for " + std::to_string(c.points_done) +
+               " finished points");
+    }
     for (long long i = 0; i < logs; ++i) {
         r.line("l");
-        const auto tab = r.current().find('\t');
-        c.control_log.push_back(tab == std::string::npos ? "" : r.current().substr(tab + 1));
+        c.control_log.push_back(r.text());
     }
     const long long energy = read_count(r, "energy");
     for (long long i = 0; i < energy; ++i) {
         r.line("e");
-        const auto tab = r.current().find('\t');
-        c.energy_log.push_back(tab == std::string::npos ? "" : r.current().substr(tab + 1));
+        c.energy_log.push_back(r.text());
     }
-    r.line("end");
+    {
+        auto words = r.line("end");
+        r.end(words);
+    }
+    if (!r.at_end()) r.fail("text follows 'end'");
     return c;
 }
 

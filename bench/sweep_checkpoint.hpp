@@ -2,7 +2,9 @@
 #pragma once
 
 #include <filesystem>
+#include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "bench/coupled_specimen.hpp"
@@ -22,14 +24,41 @@ struct SweepCheckpoint {
     std::vector<std::string> energy_log;         ///< energy.csv rows of the finished points
 };
 
+/// A checkpoint that cannot be resumed: truncated, corrupted (its checksum does not match its
+/// content), of another format, or not a checkpoint. what() is `file:line: message` (line 0
+/// when it is about the whole file).
+class CheckpointError : public std::runtime_error {
+  public:
+    CheckpointError(std::string file, int line, std::string message);
+    [[nodiscard]] const std::string& file() const noexcept { return file_; }
+    [[nodiscard]] int line() const noexcept { return line_; }
+    /// The message without the place.
+    [[nodiscard]] const std::string& message() const noexcept { return message_; }
+
+  private:
+    std::string file_;
+    int line_;
+    std::string message_;
+};
+
 /// Text form; every number as a hexadecimal float, so reading it back is exact. A DEM
 /// damper's state is written whole (particles, tangential contact springs, lock, clock), so a
-/// resumed sweep continues exactly where the interrupted one was.
+/// resumed sweep continues exactly where the interrupted one was. The last line is the
+/// checksum of everything before it (seal_checkpoint).
 std::string serialize_checkpoint(const SweepCheckpoint& checkpoint);
 
-/// Reads serialize_checkpoint()'s text; a damaged file throws std::runtime_error naming the
-/// file and line.
+/// Reads serialize_checkpoint()'s text. The checksum is checked first: a file cut short, a
+/// changed byte, a file of an older format throw CheckpointError naming the file (and the
+/// line where it applies); so does content that does not fit together (finished points
+/// without their rows).
 SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& file_name);
+
+/// `content` followed by its checksum line: `checksum fnv1a64 <16 hexadecimal digits>`, the
+/// 64-bit FNV-1a of every byte before that line.
+std::string seal_checkpoint(std::string_view content);
+
+/// The text without its checksum line (the whole text when its last line is none).
+std::string_view checkpoint_content(std::string_view text);
 
 /// The config hash a checkpoint's text was written with; empty when the text has none (a
 /// checkpoint of an older format, or not a checkpoint).

@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 
 #include "bench/arrangement.hpp"
 #include "bench/attachment.hpp"
@@ -134,6 +135,40 @@ std::string series_text(const CoupledSpecimen& specimen, const SpecimenPlant& pl
 /// |control / reference| of a row: the accelerance (or transmissibility) magnitude.
 double response_ratio(const identification::PointRow& row) {
     return std::abs(row.values[1].amplitude / row.values[0].amplitude);
+}
+
+/// A checkpoint of this sweep's config (its hash and checksum said so) that still does not fit
+/// the sweep was edited or written by a faulty build: refused, never resumed from.
+void check_fits(const SweepCheckpoint& c, const std::string& name, const SweepTask& task,
+                CoupledSpecimen& specimen) {
+    const auto refuse = [&](const std::string& why) {
+        throw CheckpointError(name, 0, "does not fit its sweep: " + why);
+    };
+    const auto& grid = task.frequencies_hz;
+    if (static_cast<std::size_t>(c.points_done) > grid.size()) {
+        refuse(std::to_string(c.points_done) + " points done, the sweep has " +
+               std::to_string(grid.size()));
+    }
+    const std::size_t channels = specimen.channel_names().size();
+    for (std::size_t i = 0; i < c.rows.size(); ++i) {
+        const auto& row = c.rows[i];
+        // Bitwise: the checkpoint's numbers are exact hexadecimal floats of the plan's.
+        if (row.frequency_hz != grid[i] || row.level_g != task.level_g) {
+            refuse("row " + std::to_string(i + 1) + " is not at the sweep's level and frequency");
+        }
+        if (row.values.size() != channels) {
+            refuse("row " + std::to_string(i + 1) + " holds " + std::to_string(row.values.size()) +
+                   " channels, the sweep records " + std::to_string(channels));
+        }
+    }
+    if (grid.empty()) return;
+    specimen.set_frequency(
+        grid[std::min(static_cast<std::size_t>(c.points_done), grid.size() - 1)]);
+    try {
+        specimen.restore(c.state);
+    } catch (const std::invalid_argument& e) {
+        refuse(e.what());
+    }
 }
 
 }  // namespace
@@ -267,7 +302,7 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
                                  prepared.structure.excitation, campaign.control_point,
                                  prepared.first_mode_hz);
 
-    const std::string checkpoint_name = task.key;
+    const std::string checkpoint_name = store.checkpoint_name(task.key);
     SweepCheckpoint checkpoint;
     const auto save = [&] {
         checkpoint.config_hash = config_hash;
@@ -278,6 +313,7 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
     };
     if (const auto text = store.load_checkpoint(task.key)) {
         checkpoint = parse_checkpoint(*text, checkpoint_name);
+        check_fits(checkpoint, checkpoint_name, task, specimen);
         out.resumed_points = checkpoint.points_done;
         progress.points_resumed(checkpoint.points_done);
     } else {

@@ -14,10 +14,18 @@ endif()
 
 add_library(sb_sanitizers INTERFACE)
 add_library(sb::sanitizers ALIAS sb_sanitizers)
-if(SB_SANITIZE)
+if(SB_SANITIZE OR SB_FUZZ)
   target_compile_options(sb_sanitizers INTERFACE
     -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all)
   target_link_options(sb_sanitizers INTERFACE -fsanitize=address,undefined)
+endif()
+if(SB_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "SB_FUZZ needs clang (libFuzzer): use the 'fuzz' preset")
+  endif()
+  # Every library records the coverage libFuzzer steers by; only the targets in fuzz/ link
+  # libFuzzer's main (-fsanitize=fuzzer there).
+  target_compile_options(sb_sanitizers INTERFACE -fsanitize=fuzzer-no-link)
 endif()
 
 # sb_add_module(NAME SOURCES ... DEPENDS ...): a library target sb_NAME with alias sb::NAME,

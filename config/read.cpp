@@ -1,6 +1,7 @@
 // Reading a config document through its declarations, and running the checks across keys.
 #include "config/read.hpp"
 
+#include <cstdint>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -18,6 +19,39 @@ std::string node_text(const toml::node& node) {
     std::ostringstream out;
     node.visit([&out](const auto& n) { out << n; });
     return out.str();
+}
+
+/// A bare word on the command line is written back into the resolved config as a TOML
+/// string: it must be text a TOML file can hold (UTF-8), without control characters, which no
+/// name or choice has and which would make the resolved config unreadable or ambiguous.
+bool plain_word(std::string_view text) {
+    std::size_t i = 0;
+    while (i < text.size()) {
+        const auto c = static_cast<unsigned char>(text[i]);
+        if (c < 0x20 || c == 0x7f) return false;
+        if (c < 0x80) {
+            ++i;
+            continue;
+        }
+        // The length of a UTF-8 sequence and the smallest code point it may encode (shorter
+        // encodings of a code point, surrogates and values past U+10FFFF are not UTF-8).
+        const std::size_t length = c >= 0xf0 ? 4 : c >= 0xe0 ? 3 : c >= 0xc0 ? 2 : 0;
+        if (length == 0 || c > 0xf4 || i + length > text.size()) return false;
+        std::uint32_t code = c & (0x7fu >> length);
+        for (std::size_t k = 1; k < length; ++k) {
+            const auto next = static_cast<unsigned char>(text[i + k]);
+            if ((next & 0xc0) != 0x80) return false;
+            code = (code << 6) | (next & 0x3fu);
+        }
+        const std::uint32_t smallest = length == 2 ? 0x80 : length == 3 ? 0x800 : 0x10000;
+        if (code < smallest || code > 0x10ffff || (code >= 0xd800 && code <= 0xdfff)) {
+            return false;
+        }
+        // C1 control characters, like the C0 ones above.
+        if (code >= 0x80 && code < 0xa0) return false;
+        i += length;
+    }
+    return true;
 }
 
 std::string append_path(const std::string& prefix, const std::string& path_text) {
@@ -261,10 +295,23 @@ bool value_from_text(const Declaration& decl, std::string_view text, const std::
                      const Origin& origin, Diagnostics& diagnostics, Value& out) {
     // As TOML when it is a TOML value (0.45, 3, true, "name", [0, 0, 1]); else the bare word
     // (linear-steady-state, automatic), which only a name or an automatic key takes.
+    // One value on one line: "0.5\n[x]\ny = 1" would parse, and all but its first line be
+    // dropped unseen.
+    if (text.find_first_of("\r\n") != std::string_view::npos) {
+        diagnostics.add(origin, path, quoted(text), "must be one value on one line",
+                        decl.meaning_with_unit());
+        return false;
+    }
     std::shared_ptr<const Document> parsed;
     try {
         parsed = Document::parse_text("value = " + std::string(text), origin.file);
     } catch (const ConfigException&) {
+        if (!plain_word(text)) {
+            diagnostics.add(origin, path, quoted(text),
+                            "must be a TOML value or a plain word (UTF-8, no control characters)",
+                            decl.meaning_with_unit());
+            return false;
+        }
         out = std::string(text);
         if (auto problem = accept(decl, out)) {
             diagnostics.add(origin, path, std::string(text), problem->constraint,

@@ -2,8 +2,10 @@
 #include <algorithm>
 #include <charconv>
 #include <fstream>
+#include <sstream>
 #include <string_view>
 
+#include "core/text_file.hpp"
 #include "identification/csv_table.hpp"
 #include "identification/file_error.hpp"
 #include "identification/recording_io.hpp"
@@ -130,8 +132,7 @@ std::vector<DampingRow> read_damping_csv(const std::filesystem::path& path) {
 }
 
 void write_damping_csv(const std::filesystem::path& path, const std::vector<DampingRow>& rows) {
-    std::ofstream f(path, std::ios::binary);
-    if (!f) throw FileError(path.string(), 0, 0, "cannot open the file for writing");
+    std::ostringstream f;
     // The columns of older files first, in their order, so that they keep their positions.
     const bool per_filling =
         std::any_of(rows.begin(), rows.end(), [](const DampingRow& r) { return r.filling >= 0; });
@@ -154,6 +155,7 @@ void write_damping_csv(const std::filesystem::path& path, const std::vector<Damp
         if (per_filling) f << ',' << r.filling;
         f << '\n';
     }
+    write_file_atomically(path, f.str());
 }
 
 }  // namespace sb::identification

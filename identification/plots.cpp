@@ -10,6 +10,7 @@
 #include <map>
 #include <sstream>
 
+#include "core/text_file.hpp"
 #include "core/units.hpp"
 #include "identification/file_error.hpp"
 
@@ -94,9 +95,7 @@ std::string form_name(FrfForm form) {
 }
 
 void write_file(const fs::path& file, const std::string& text) {
-    std::ofstream f(file, std::ios::binary);
-    if (!f) throw FileError(file.string(), 0, 0, "cannot open the file for writing");
-    f << text;
+    write_file_atomically(file, text);
 }
 
 }  // namespace
@@ -105,7 +104,7 @@ PlotResult write_plots(const fs::path& out_dir, const std::vector<LevelIdentific
                        const PlotOptions& options) {
     PlotResult result;
     const fs::path dir = out_dir / "plots";
-    fs::create_directories(dir);
+    create_directories_for_writing(dir);
     std::vector<std::string> order;
     std::map<std::string, std::vector<const LevelIdentification*>> by_arrangement;
     for (const auto& l : levels) {

@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 
+#include "core/text_file.hpp"
 #include "core/units.hpp"
 #include "identification/csv_table.hpp"
 #include "identification/file_error.hpp"
@@ -45,7 +46,21 @@ std::string channel_list(const Recording& rec) {
 TimeHistory load_series(const detail::CsvTable& t, const detail::CsvCell& cell,
                         const std::filesystem::path& directory, double frequency_hz,
                         const Recording& rec) {
-    const auto path = directory / cell.text;
+    // A series belongs to the recording: a relative path that stays inside its directory. An
+    // absolute path or one through ".." would read whatever file it names, and a control
+    // character (a NUL ends the name the system sees) another file than the one written.
+    const std::filesystem::path relative(cell.text);
+    const bool control = std::any_of(cell.text.begin(), cell.text.end(),
+                                     [](char c) { return static_cast<unsigned char>(c) < 0x20; });
+    const bool outside = relative.is_absolute() || relative.has_root_name() ||
+                         std::any_of(relative.begin(), relative.end(),
+                                     [](const auto& part) { return part == ".."; });
+    if (control || outside) {
+        throw FileError(t.file, cell.line, cell.column,
+                        "series file '" + cell.text +
+                            "' must be a relative path inside the recording directory");
+    }
+    const auto path = directory / relative;
     if (!std::filesystem::is_regular_file(path)) {
         throw FileError(t.file, cell.line, cell.column,
                         "series file '" + cell.text + "' not found");
@@ -62,6 +77,15 @@ TimeHistory load_series(const detail::CsvTable& t, const detail::CsvCell& cell,
         m << h.time_s.size() << " samples at " << fs << " Hz hold " << periods << " periods of "
           << frequency_hz << " Hz (" << t.file << " line " << cell.line
           << "): a series must hold whole periods";
+        throw FileError(path.string(), 0, 0, m.str());
+    }
+    // The fundamental needs more than two samples per period: at or above the Nyquist
+    // frequency its bin does not exist, and it would read as zero.
+    if (!(fs > 2.0 * frequency_hz)) {
+        std::ostringstream m;
+        m.precision(8);
+        m << "sampled at " << fs << " Hz, which cannot hold " << frequency_hz << " Hz (" << t.file
+          << " line " << cell.line << "): a series needs more than two samples per period";
         throw FileError(path.string(), 0, 0, m.str());
     }
     return h;
@@ -236,8 +260,7 @@ void read_points_csv(const std::filesystem::path& path, Recording& rec) {
 }
 
 void write_points_csv(const std::filesystem::path& path, const Recording& rec) {
-    std::ofstream f(path, std::ios::binary);
-    if (!f) throw FileError(path.string(), 0, 0, "cannot open the file for writing");
+    std::ostringstream f;
     // A channel gets its harmonic columns when any row knows one of its ratios.
     std::vector<bool> harmonics(rec.channels.size(), false);
     for (const auto& p : rec.points) {
@@ -276,6 +299,7 @@ void write_points_csv(const std::filesystem::path& path, const Recording& rec) {
         }
         f << '\n';
     }
+    write_file_atomically(path, f.str());
 }
 
 }  // namespace sb::identification

@@ -1,6 +1,7 @@
 // The recording directory as a whole.
 #include "identification/recording_io.hpp"
 
+#include "core/text_file.hpp"
 #include "identification/file_error.hpp"
 
 namespace sb::identification {
@@ -33,14 +34,14 @@ Recording read_recording(const std::filesystem::path& dir) {
 }
 
 void write_recording(const std::filesystem::path& dir, const Recording& rec) {
-    std::filesystem::create_directories(dir);
+    create_directories_for_writing(dir);
     write_recording_toml(dir / "recording.toml", rec);
     write_points_csv(dir / "points.csv", rec);
     if (!rec.damping.empty()) write_damping_csv(dir / "damping.csv", rec.damping);
     for (const auto& p : rec.points) {
         if (p.series.empty() || p.history.time_s.empty()) continue;
         const auto file = dir / p.series;
-        std::filesystem::create_directories(file.parent_path());
+        create_directories_for_writing(file.parent_path());
         write_time_history_csv(file, p.history);
     }
 }

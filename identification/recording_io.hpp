@@ -14,8 +14,10 @@ namespace sb::identification {
 /// unknown keys, bad enumerations, not exactly one reference or more than one control channel
 /// (recording.toml); missing, unknown or duplicated columns, cells that are not finite
 /// numbers, bad status (points.csv). Every series a row names is loaded into
-/// PointRow::history and checked: the file exists, time_s is uniform, its columns are
-/// channels of recording.toml, and it spans a whole number of periods of the row's frequency.
+/// PointRow::history and checked: its path is relative and stays inside the directory, the
+/// file exists, time_s increases uniformly, its columns are channels of recording.toml, it
+/// spans a whole number of periods of the row's frequency with more than two samples per
+/// period.
 /// A channel whose three cells (C_rms, C_re, C_im) are all empty is computed from the series
 /// (fundamental and rms over whole periods, ChannelValue::from_series), and so are its
 /// harmonic ratios unless their cells hold numbers. The harmonic columns C_h2, C_h3 are
@@ -33,9 +35,9 @@ void read_points_csv(const std::filesystem::path& file, Recording& recording);
 /// optional (older files, other tools): absent or empty, they read as 0, none, 0.
 std::vector<DampingRow> read_damping_csv(const std::filesystem::path& file);
 
-/// Reads a time history: header `time_s,<channel>,...`, numbers, uniform sampling (a step
-/// differing from the mean by more than 1e-6 relative is an error). Lines starting with `#`
-/// are comments.
+/// Reads a time history: header `time_s,<channel>,...`, numbers, uniform increasing sampling
+/// (a step differing from the mean by more than 1e-6 relative is an error). Lines starting
+/// with `#` are comments.
 TimeHistory read_time_history_csv(const std::filesystem::path& file);
 
 /// The same, and every column after time_s must be one of `known_channels` (an error at the
@@ -44,7 +46,9 @@ TimeHistory read_time_history_csv(const std::filesystem::path& file,
                                   const std::vector<std::string>& known_channels);
 
 /// Writes recording.toml, points.csv, (if non-empty) damping.csv and the loaded series of the
-/// points (PointRow::history, at PointRow::series); creates the directories.
+/// points (PointRow::history, at PointRow::series); creates the directories. Every writer here
+/// writes its file whole or not at all (through a rename) and throws sb::FileWriteError
+/// (core/text_file.hpp) naming the file when it cannot be written.
 /// Numbers are written with 17 significant digits so a write–read cycle is exact.
 void write_recording(const std::filesystem::path& directory, const Recording& recording);
 

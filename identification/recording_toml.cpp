@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <fstream>
 #include <set>
+#include <sstream>
 
+#include "core/text_file.hpp"
 #include "identification/file_error.hpp"
 #include "identification/recording_io.hpp"
 
@@ -175,8 +177,7 @@ Recording read_recording_toml(const std::filesystem::path& path) {
 }
 
 void write_recording_toml(const std::filesystem::path& path, const Recording& rec) {
-    std::ofstream f(path, std::ios::binary);
-    if (!f) throw FileError(path.string(), 0, 0, "cannot open the file for writing");
+    std::ostringstream f;
     f << "[recording]\n"
       << "name = \"" << escape(rec.info.name) << "\"\n"
       << "kind = \"" << escape(rec.info.kind) << "\"\n"
@@ -189,6 +190,7 @@ void write_recording_toml(const std::filesystem::path& path, const Recording& re
           << "location = \"" << escape(ch.location) << "\"\n"
           << "role = \"" << role_name(ch.role) << "\"\n";
     }
+    write_file_atomically(path, f.str());
 }
 
 }  // namespace sb::identification

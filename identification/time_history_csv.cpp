@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/text_file.hpp"
 #include "identification/csv_table.hpp"
 #include "identification/file_error.hpp"
 #include "identification/recording_io.hpp"
@@ -60,7 +61,18 @@ TimeHistory read_time_history_csv(const std::filesystem::path& path,
             h.columns[c - 1].push_back(detail::number(t, row[c], h.channels[c - 1]));
     }
     if (h.time_s.size() >= 2) {
+        if (!(h.time_s.back() > h.time_s.front())) {
+            const auto& cell = t.rows.back()[0];
+            throw FileError(t.file, cell.line, cell.column,
+                            "time_s must increase: it ends at " + cell.text + " s, not after " +
+                                t.rows.front()[0].text + " s");
+        }
         const double dt = 1.0 / h.sample_rate_hz();
+        if (!(std::isfinite(dt) && dt > 0.0)) {
+            const auto& cell = t.rows.back()[0];
+            throw FileError(t.file, cell.line, cell.column,
+                            "time_s spans more than a number can hold");
+        }
         for (std::size_t i = 1; i < h.time_s.size(); ++i) {
             if (std::abs(h.time_s[i] - h.time_s[i - 1] - dt) > kStepTolerance * dt) {
                 const auto& cell = t.rows[i][0];
@@ -88,9 +100,7 @@ std::string time_history_csv_text(const TimeHistory& h) {
 }
 
 void write_time_history_csv(const std::filesystem::path& path, const TimeHistory& h) {
-    std::ofstream f(path, std::ios::binary);
-    if (!f) throw FileError(path.string(), 0, 0, "cannot open the file for writing");
-    f << time_history_csv_text(h);
+    write_file_atomically(path, time_history_csv_text(h));
 }
 
 }  // namespace sb::identification

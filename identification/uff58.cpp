@@ -1,6 +1,7 @@
 // UFF dataset 58/58b reader and 58 writer, record layout of research note §4 (pyuff's spec text).
 #include "identification/uff58.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdio>
@@ -8,7 +9,9 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <system_error>
 
+#include "core/text_file.hpp"
 #include "core/units.hpp"
 #include "identification/file_error.hpp"
 #include "identification/uff58_number.hpp"
@@ -34,6 +37,7 @@ class Cursor {
     bool done() const { return pos_ >= bytes_.size(); }
     int line() const { return line_; }
     std::size_t pos() const { return pos_; }
+    std::size_t remaining() const { return bytes_.size() - pos_; }
     /// The next line without its line end; advances past the LF.
     std::string_view next() {
         const std::size_t b = pos_;
@@ -167,8 +171,10 @@ std::size_t values_per_point(const Uff58Record& r, int spacing) {
     return (r.is_complex() ? 2u : 1u) + (spacing == 0 ? 1u : 0u);
 }
 
-/// Fills x and y from the flat value list of record 12.
-void unpack(const std::vector<double>& v, const Record7& s, Uff58Record& r) {
+/// Fills x and y from the flat value list of record 12. A value that is not finite (a binary
+/// NaN or infinity, an even abscissa past the largest double) is refused: no UFF writer means
+/// one as data, and it would pass through every estimate unnoticed.
+void unpack(Cursor& c, const std::vector<double>& v, const Record7& s, Uff58Record& r) {
     const auto n = static_cast<std::size_t>(s.points);
     const std::size_t vpp = values_per_point(r, s.spacing);
     r.x.resize(n);
@@ -180,6 +186,9 @@ void unpack(const std::vector<double>& v, const Record7& s, Uff58Record& r) {
         const double re = p[k++];
         const double im = r.is_complex() ? p[k] : 0.0;
         r.y[i] = {re, im};
+        if (!std::isfinite(r.x[i]) || !std::isfinite(re) || !std::isfinite(im)) {
+            c.fail(0, "record 12: point " + std::to_string(i + 1) + " is not a finite number");
+        }
     }
 }
 
@@ -197,7 +206,9 @@ void read_ascii_data(Cursor& c, const Record7& s, Uff58Record& r) {
         static_cast<std::size_t>(s.points) * values_per_point(r, s.spacing);
     const auto w = widths(r, s.spacing);
     std::vector<double> v;
-    v.reserve(expected);
+    // Record 7's count is not trusted with the allocation: every value takes two bytes of text
+    // at least, so the file's remaining size bounds what can really be read.
+    v.reserve(std::min(expected, c.remaining() / 2));
     while (true) {
         if (c.done()) c.fail(0, "end of file inside dataset 58 (no closing -1)");
         const auto l = c.next();
@@ -240,7 +251,7 @@ void read_ascii_data(Cursor& c, const Record7& s, Uff58Record& r) {
                       " values expected)");
     }
     v.resize(expected);  // rows padded past num_pts (pyuff #22)
-    unpack(v, s, r);
+    unpack(c, v, s, r);
 }
 
 template <typename T>
@@ -295,7 +306,7 @@ Uff58Record read_dataset(Cursor& c, bool binary, std::string_view id_line) {
         v[i] = dbl ? from_bytes<double>(block.data() + i * size, swap)
                    : static_cast<double>(from_bytes<float>(block.data() + i * size, swap));
     }
-    unpack(v, s, r);
+    unpack(c, v, s, r);
     // Tolerate stray CR/LF (or the rest of a line) before the closing -1 (pyuff fix_58b).
     while (!c.done()) {
         const auto l = c.next();
@@ -333,6 +344,11 @@ void put_axis(std::string& out, const Uff58Axis& a, std::size_t record) {
 }  // namespace
 
 std::vector<Uff58Record> read_uff58(const std::filesystem::path& path) {
+    std::error_code error;
+    if (std::filesystem::exists(path, error) && !std::filesystem::is_regular_file(path, error)) {
+        // A device or a pipe could be read forever (/dev/zero).
+        throw FileError(path.string(), 0, 0, "not a regular file");
+    }
     std::ifstream in(path, std::ios::binary);
     if (!in) throw FileError(path.string(), 0, 0, "cannot open the file");
     std::ostringstream ss;
@@ -440,9 +456,7 @@ void write_uff58(const std::filesystem::path& path, const std::vector<Uff58Recor
         }
         out += "    -1\n";
     }
-    std::ofstream f(path, std::ios::binary);
-    if (!f) throw FileError(path.string(), 0, 0, "cannot open the file for writing");
-    f << out;
+    write_file_atomically(path, out);
 }
 
 Uff58Record to_uff58(const Frf& frf, const std::string& description) {

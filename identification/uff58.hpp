@@ -63,14 +63,16 @@ enum class Uff58Digits {
 /// CRLF, Fortran `D` exponents and exponents without a letter (`1.0-100`), fields glued
 /// together or breaking the nominal widths, rows padded past the number of points, blank or
 /// Latin-1 ID lines, a wrong byte count in the 58b header (the count follows from record 7)
-/// and stray CR/LF after the binary block. Throws FileError (file:line:col) otherwise.
+/// and stray CR/LF after the binary block. Throws FileError (file:line:col) otherwise, and for
+/// a value that is not finite (a binary NaN or infinity) and a path that is not a regular file.
 std::vector<Uff58Record> read_uff58(const std::filesystem::path& path);
 
 /// Writes the records as ASCII dataset 58 with their ordinate data type (single-precision
 /// types 2/5 keep their type; in nominal digits their values are written E13.5), LF line
 /// ends. Every header field is written as it is: a name longer than its field (ID lines 80,
 /// entity names 10, axis labels 20 characters) or a line break in one throws
-/// std::invalid_argument instead of being cut. Throws FileError if the file cannot be opened.
+/// std::invalid_argument instead of being cut. Throws sb::FileWriteError (core/text_file.hpp)
+/// if the file cannot be written; the file is written whole or not at all.
 void write_uff58(const std::filesystem::path& path, const std::vector<Uff58Record>& records,
                  Uff58Digits digits = Uff58Digits::exact);
 

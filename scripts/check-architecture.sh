@@ -34,14 +34,14 @@ check correlation apps
 # toml++: config/'s sources and its internal config/toml_tree.hpp, and identification's
 # reader of recording.toml (a data file, not a config).
 hits=$(sources '#include [<"]toml\+\+' core dem structure control identification config bench \
-           correlation apps perf tests \
+           correlation apps perf tests fuzz \
        | grep -vE '^config/[a-z_]+\.cpp:|^config/toml_tree\.hpp:|^identification/recording_toml\.cpp:' \
        || true)
 if [[ -n "$hits" ]]; then
     echo "architecture: only config/ (its sources) may include toml++:"; echo "$hits"; status=1
 fi
 hits=$(sources '#include "config/toml_tree\.hpp"' core dem structure control identification config \
-           bench correlation apps perf tests | grep -vE '^config/[a-z_]+\.cpp:' || true)
+           bench correlation apps perf tests fuzz | grep -vE '^config/[a-z_]+\.cpp:' || true)
 if [[ -n "$hits" ]]; then
     echo "architecture: config/toml_tree.hpp is internal to config/:"; echo "$hits"; status=1
 fi

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages ShakerBench needs, only those that are missing.
-# Usage: scripts/install-deps.sh [--test]   (--test adds what the test suite needs)
+# Usage: scripts/install-deps.sh [--test]   (--test adds what the test suite and the fuzz
+# targets need)
 set -euo pipefail
 
 # gnuplot draws the campaign's SVG plots: the main job needs it as much as the tests do.
@@ -8,7 +9,8 @@ packages=(build-essential cmake pkg-config libeigen3-dev libfftw3-dev libnlopt-c
           libtomlplusplus-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
           gnuplot-nox)
 if [[ "${1:-}" == "--test" ]]; then
-    packages+=(clang-format lammps time)
+    # clang with libFuzzer and its OpenMP runtime: the 'fuzz' preset (scripts/fuzz.sh).
+    packages+=(clang-format lammps time clang libclang-rt-14-dev libomp-dev)
 fi
 
 missing=()

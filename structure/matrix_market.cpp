@@ -8,6 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <system_error>
+#include <utility>
 #include <vector>
 
 namespace sb::structure {
@@ -18,6 +20,13 @@ namespace {
     throw MatrixMarketError(file.string() + place + ": " + message);
 }
 
+/// Nothing but blanks may follow the numbers a line holds: a third value on an entry line is
+/// a complex entry or a damaged line, never to be dropped.
+bool only_blanks_left(std::istringstream& in) {
+    std::string rest;
+    return !(in >> rest);
+}
+
 std::string lower(std::string s) {
     std::transform(s.begin(), s.end(), s.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -26,6 +35,12 @@ std::string lower(std::string s) {
 
 /// Reads the header and the size line, leaving `in` at the first entry line.
 MatrixMarketSize read_header(std::ifstream& in, const std::filesystem::path& file, int& line) {
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(file, error)) {
+        // A device or a pipe could be read forever (/dev/zero): only files are matrices.
+        fail(file, 0,
+             std::filesystem::exists(file, error) ? "not a regular file" : "cannot open file");
+    }
     if (!in) fail(file, 0, "cannot open file");
     std::string text;
     if (!std::getline(in, text)) fail(file, 1, "empty file");
@@ -53,15 +68,27 @@ MatrixMarketSize read_header(std::ifstream& in, const std::filesystem::path& fil
             continue;
         }
         std::istringstream numbers(text);
-        if (!(numbers >> size.rows >> size.cols >> size.entries) || size.rows <= 0 ||
-            size.cols <= 0 || size.entries < 0) {
+        if (!(numbers >> size.rows >> size.cols >> size.entries) || !only_blanks_left(numbers) ||
+            size.rows <= 0 || size.cols <= 0 || size.entries < 0) {
             fail(file, line, "expected 'rows columns entries' with positive sizes");
         }
         break;
     }
     if (size.rows < 0) fail(file, line, "missing size line");
+    if (size.rows > kMatrixMarketMaxDimension || size.cols > kMatrixMarketMaxDimension) {
+        fail(file, line,
+             std::to_string(size.rows) + " x " + std::to_string(size.cols) +
+                 ": rows and columns are limited to " + std::to_string(kMatrixMarketMaxDimension));
+    }
     if (size.symmetric && size.rows != size.cols) {
         fail(file, line, "a symmetric matrix must be square");
+    }
+    // Each place holds at most one entry (a symmetric file: the lower triangle).
+    const long places = size.symmetric ? size.rows * (size.rows + 1) / 2 : size.rows * size.cols;
+    if (size.entries > places) {
+        fail(file, line,
+             std::to_string(size.entries) + " entries, more than the " + std::to_string(places) +
+                 " places of the matrix");
     }
     return size;
 }
@@ -85,6 +112,8 @@ Eigen::SparseMatrix<double> read_matrix_market_sparse(const std::filesystem::pat
     std::string text;
 
     std::vector<Eigen::Triplet<double>> triplets;
+    // Per entry: its place (row-major) and line, to find an entry given twice.
+    std::vector<std::pair<long, int>> places;
     // The size line is not trusted with the allocation: it grows with what is really read.
     triplets.reserve(
         static_cast<std::size_t>(std::min(symmetric ? 2 * entries : entries, 1L << 16)));
@@ -98,7 +127,9 @@ Eigen::SparseMatrix<double> read_matrix_market_sparse(const std::filesystem::pat
         std::istringstream entry(text);
         long i = 0, j = 0;
         double value = 0.0;
-        if (!(entry >> i >> j >> value)) fail(file, line, "expected 'row column value'");
+        if (!(entry >> i >> j >> value) || !only_blanks_left(entry)) {
+            fail(file, line, "expected 'row column value'");
+        }
         if (i < 1 || i > rows || j < 1 || j > cols) {
             fail(file, line,
                  "index (" + std::to_string(i) + ", " + std::to_string(j) + ") outside " +
@@ -110,11 +141,24 @@ Eigen::SparseMatrix<double> read_matrix_market_sparse(const std::filesystem::pat
         const auto c = static_cast<int>(j - 1);
         triplets.emplace_back(r, c, value);
         if (symmetric && r != c) triplets.emplace_back(c, r, value);
+        places.emplace_back((i - 1) * cols + (j - 1), line);
         ++read;
     }
     if (read < entries) {
         fail(file, line,
              "expected " + std::to_string(entries) + " entries, found " + std::to_string(read));
+    }
+    // Two entries at one place would be summed: the file means one of them, not their sum.
+    std::sort(places.begin(), places.end());
+    for (std::size_t k = 1; k < places.size(); ++k) {
+        if (places[k].first == places[k - 1].first) {
+            const long at = places[k].first;
+            fail(file, std::max(places[k].second, places[k - 1].second),
+                 "entry (" + std::to_string(at / cols + 1) + ", " + std::to_string(at % cols + 1) +
+                     ") given twice (lines " +
+                     std::to_string(std::min(places[k].second, places[k - 1].second)) + " and " +
+                     std::to_string(std::max(places[k].second, places[k - 1].second)) + ")");
+        }
     }
     Eigen::SparseMatrix<double> out(static_cast<Eigen::Index>(rows),
                                     static_cast<Eigen::Index>(cols));
@@ -123,6 +167,17 @@ Eigen::SparseMatrix<double> read_matrix_market_sparse(const std::filesystem::pat
 }
 
 Eigen::MatrixXd read_matrix_market_dense(const std::filesystem::path& file) {
+    {
+        std::ifstream in(file);
+        int line = 0;
+        const MatrixMarketSize size = read_header(in, file, line);
+        if (size.rows * size.cols > kMatrixMarketMaxDenseEntries) {
+            fail(file, line,
+                 std::to_string(size.rows) + " x " + std::to_string(size.cols) +
+                     " is too large for a dense matrix (at most " +
+                     std::to_string(kMatrixMarketMaxDenseEntries) + " entries)");
+        }
+    }
     return Eigen::MatrixXd(read_matrix_market_sparse(file));
 }
 

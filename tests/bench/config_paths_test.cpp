@@ -10,6 +10,7 @@
 #include "bench/campaign_config.hpp"
 #include "bench/config_schema.hpp"
 #include "bench/frequency_grid.hpp"
+#include "bench/resolved_config.hpp"
 #include "config/errors.hpp"
 #include "structure/linear_model.hpp"
 #include "structure/modal_analysis.hpp"
@@ -127,6 +128,37 @@ TEST(ConfigPaths, ApplyOverridesTakesKeyEqualsValueInOrder) {
     EXPECT_EQ(config.campaign.point_start, CampaignSpec::PointStart::linear_steady_state);
     EXPECT_EQ(config.campaign.dampers.front().contact.normal_stiffness, 2e5);
     EXPECT_EQ(errors_of([&] { apply_overrides(config, {"campaign.seed"}); }).size(), 1u);
+}
+
+/// fuzz/corpus/config/regression-set-not-utf8.toml: a --set bare word that is not UTF-8 was
+/// taken as the campaign's name, and the resolved config written from it could not be read.
+TEST(ConfigPaths, ABareWordThatIsNotUtf8OrHoldsControlCharactersIsRefused) {
+    CampaignConfig config = builtin();
+    const std::string name = config.name;
+    for (const std::string& value :
+         {std::string("\xfd\xe2\xea}H"), std::string("a\x01b"), std::string("over\xc0\xafshort")}) {
+        const auto errors = errors_of([&] { apply_overrides(config, {"campaign.name=" + value}); });
+        ASSERT_EQ(errors.size(), 1u);
+        EXPECT_NE(errors[0].find("--set: campaign.name = "), std::string::npos) << errors[0];
+        EXPECT_NE(errors[0].find("must be a TOML value or a plain word"), std::string::npos)
+            << errors[0];
+        EXPECT_EQ(config.name, name);
+    }
+    // A name in another script is UTF-8 and is taken, and its resolved config reads back.
+    apply_overrides(config, {"campaign.name=Schwingtisch-\xc3\xbc"});
+    EXPECT_EQ(config.name, "Schwingtisch-\xc3\xbc");
+    const auto again = load_campaign_config_text(resolved_config_toml(config), "resolved.toml");
+    EXPECT_EQ(again.name, config.name);
+    EXPECT_EQ(config_hash(again), config_hash(config));
+}
+
+TEST(ConfigPaths, AValueSpanningLinesIsRefusedRatherThanCutToItsFirstLine) {
+    CampaignConfig config = builtin();
+    const auto errors = errors_of(
+        [&] { apply_overrides(config, {"structure.beam.length_m=0.5\n[campaign]\nseed = 3"}); });
+    ASSERT_EQ(errors.size(), 1u);
+    EXPECT_NE(errors[0].find("must be one value on one line"), std::string::npos) << errors[0];
+    EXPECT_EQ(config.campaign.seed, builtin().campaign.seed);
 }
 
 /// Every key a leaf module's validate() reports maps to a declared key of its table.

@@ -148,6 +148,53 @@ TEST(RecordingIo, SeriesErrorsNameTheFileAndTheCell) {
         << e.what();
 }
 
+TEST(RecordingIo, ASeriesOutsideTheRecordingDirectoryIsRefusedAtItsCell) {
+    // A series of the right shape one folder up: only the path is wrong.
+    const auto up = fs::temp_directory_path() / "sb_identification_recording_test" / "up.csv";
+    write_series(up, 6.4, 2, 25);
+    for (const std::string& series :
+         {std::string("../up.csv"), up.string(), std::string("series/../../up.csv")}) {
+        const auto dir =
+            make_dir("series-outside", kToml,
+                     std::string(kHeader) + "H-0,0.5,6.4,converged," + series + ",1,1,0,1,1,1\n");
+        const auto e = expect_error(dir);
+        EXPECT_NE(std::string(e.what()).find("points.csv:2:23: series file '" + series +
+                                             "' must be a relative path inside the recording "
+                                             "directory"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+TEST(RecordingIo, ASeriesThatCannotHoldTheRowsFrequencyIsRefused) {
+    // 32 samples at 1 per period of 6.4 Hz are whole periods, but hold nothing of 6.4 Hz: its
+    // fundamental would read as zero.
+    const auto dir =
+        make_dir("series-nyquist", kToml,
+                 std::string(kHeader) + "H-0,0.5,6.4,converged,series/a.csv,1,1,0,,,\n");
+    write_series(dir / "series" / "a.csv", 6.4, 32, 1);
+    const auto e = expect_error(dir);
+    EXPECT_NE(e.message().find("a series needs more than two samples per period"),
+              std::string::npos)
+        << e.what();
+    EXPECT_EQ(fs::path(e.file()).filename(), "a.csv");
+}
+
+TEST(RecordingIo, ATimeAxisThatDoesNotIncreaseIsAnErrorAtItsLastCell) {
+    const auto p = fs::temp_directory_path() / "sb_identification_recording_test" / "back.csv";
+    fs::create_directories(p.parent_path());
+    std::ofstream(p) << "time_s,force\n0.3,1\n0.2,1\n0.1,1\n";
+    try {
+        (void)read_time_history_csv(p);
+        FAIL() << "read";
+    } catch (const FileError& e) {
+        EXPECT_EQ(e.line(), 4);
+        EXPECT_NE(e.message().find("time_s must increase"), std::string::npos) << e.what();
+    }
+    std::ofstream(p) << "time_s,force\n1,1\n1,1\n1,1\n";
+    EXPECT_THROW((void)read_time_history_csv(p), FileError);
+}
+
 TEST(RecordingIo, MissingColumnNamesTheColumnAndTheChannelAtTheHeaderLine) {
     // Two comment lines and a blank line precede the header: the error is on line 4.
     const auto dir =

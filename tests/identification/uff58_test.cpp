@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 
 #include "identification/file_error.hpp"
@@ -345,6 +346,65 @@ TEST(Uff58, ReadsSinglePrecisionEvenlySpacedBinary58bWithTheSpacedHeader) {
     EXPECT_EQ(r[0].x, (std::vector<double>{10.0, 10.5, 11.0}));
     EXPECT_EQ(r[0].y[0], std::complex<double>(0.5, -0.25));
     EXPECT_EQ(r[0].y[2], std::complex<double>(-3.0, 0.125));
+}
+
+/// fuzz/corpus/uff58/regression-huge-point-count.uff: record 7 announces 999999999 points
+/// of three values each; the reader reserved room for all of them before reading one (24 GB).
+TEST(Uff58, AHugePointCountIsReportedAsMissingValuesNotAllocated) {
+    const std::string text =
+        "    -1\n    58\nx\nx\nx\nx\nx\n"
+        "    4         1    0         0 acc                4   2 force              1   2\n"
+        "         6 999999999         0  0.00000E+00  0.00000E+00  0.00000E+00\n"
+        "        18    0    0    0 Frequency            Hz\n"
+        "        12    1    0    0 Acceleration         m/s^2\n"
+        "        13    0    1    0 Force                N\n"
+        "         0    0    0    0 NONE                 NONE\n"
+        "  1.00000E+01  1.250000000000E+00 -2.500000000000E-01\n"
+        "    -1\n";
+    const auto p = temp_file("huge.uff");
+    write_text(p, text);
+    try {
+        (void)read_uff58(p);
+        FAIL() << "read";
+    } catch (const FileError& e) {
+        EXPECT_NE(e.message().find("3 values for 999999999 points"), std::string::npos) << e.what();
+    }
+}
+
+/// fuzz/corpus/uff58/regression-binary-nan.uff: a NaN in a binary block came through as a
+/// value of the FRF.
+TEST(Uff58, ANonFiniteValueInABinaryBlockIsAnErrorAtItsPoint) {
+    std::string s = binary_header(
+        "    58b     1     2          11          48     0     0           0           0",
+        "         6         2         0  0.00000E+00  0.00000E+00  0.00000E+00");
+    s += bytes_of<double>({5.0, 0.1, -0.2, 6.0, std::numeric_limits<double>::quiet_NaN(), 1.0},
+                          false);
+    s += "    -1\n";
+    const auto p = temp_file("bin-nan.uff");
+    write_text(p, s);
+    try {
+        (void)read_uff58(p);
+        FAIL() << "read";
+    } catch (const FileError& e) {
+        EXPECT_NE(e.message().find("point 2 is not a finite number"), std::string::npos)
+            << e.what();
+    }
+    // An evenly spaced abscissa past the largest double, from finite min and increment.
+    s = binary_header(
+        "    58b     1     2          11          48     0     0           0           0",
+        "         2         3         1  1.00000E+308  1.00000E+308  0.00000E+00");
+    s += bytes_of<float>({1.0, 2.0, 3.0}, false) + "    -1\n";
+    write_text(p, s);
+    EXPECT_THROW((void)read_uff58(p), FileError);
+}
+
+TEST(Uff58, ADeviceIsNotReadAsAFile) {
+    try {
+        (void)read_uff58("/dev/zero");
+        FAIL() << "read";
+    } catch (const FileError& e) {
+        EXPECT_EQ(e.message(), "not a regular file");
+    }
 }
 
 TEST(Uff58, ReportsFileLineAndColumnOfABadNumber) {

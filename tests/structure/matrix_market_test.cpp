@@ -62,6 +62,85 @@ TEST(MatrixModel, TwoDofChainFromFilesHasItsAnalyticFrequencies) {
     EXPECT_EQ(model.point("tip").op(2, 1), 1.0);
 }
 
+/// The message of the MatrixMarketError `read` throws, or a failure.
+template <typename Read>
+std::string error_of(Read read) {
+    try {
+        read();
+    } catch (const MatrixMarketError& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "no MatrixMarketError";
+    return {};
+}
+
+/// fuzz/corpus/matrix_market/regression-huge-columns.mtx and regression-huge-rows.mtx: a size
+/// line of 10^12 columns (or 3 x 10^9 rows) was allocated before any entry was read, and a row
+/// past 2^31 would have been cut to an int.
+TEST(MatrixMarket, ASizeBeyondTheLimitIsAnErrorBeforeAnythingIsAllocated) {
+    const auto wide = write("wide.mtx",
+                            "%%MatrixMarket matrix coordinate real general\n"
+                            "1 1000000000000 0\n");
+    const std::string m = error_of([&] { (void)read_matrix_market_sparse(wide); });
+    EXPECT_NE(m.find("sb_structure_wide.mtx:2: 1 x 1000000000000: rows and columns are limited "
+                     "to 1000000"),
+              std::string::npos)
+        << m;
+    EXPECT_THROW((void)read_matrix_market_size(wide), MatrixMarketError);
+    const auto tall = write("tall.mtx",
+                            "%%MatrixMarket matrix coordinate real general\n"
+                            "3000000000 1 1\n3000000000 1 1.0\n");
+    EXPECT_THROW((void)read_matrix_market_sparse(tall), MatrixMarketError);
+    const auto dense = write("dense.mtx",
+                             "%%MatrixMarket matrix coordinate real general\n"
+                             "20000 20000 0\n");
+    EXPECT_NO_THROW((void)read_matrix_market_sparse(dense));
+    EXPECT_NE(error_of([&] {
+                  (void)read_matrix_market_dense(dense);
+              }).find("too large for a dense matrix"),
+              std::string::npos);
+}
+
+TEST(MatrixMarket, MoreEntriesThanPlacesIsAnErrorAtTheSizeLine) {
+    const auto p = write("places.mtx",
+                         "%%MatrixMarket matrix coordinate real symmetric\n"
+                         "2 2 4\n1 1 1\n2 1 1\n2 2 1\n2 2 1\n");
+    EXPECT_NE(error_of([&] {
+                  (void)read_matrix_market_size(p);
+              }).find(":2: 4 entries, more than the 3 places of the matrix"),
+              std::string::npos);
+}
+
+TEST(MatrixMarket, AnEntryGivenTwiceIsAnErrorNamingBothLines) {
+    // Summed, the two would give a stiffness neither line states.
+    const auto p = write("twice.mtx",
+                         "%%MatrixMarket matrix coordinate real general\n"
+                         "2 2 3\n1 1 1.0\n2 2 4.0\n1 1 2.0\n");
+    const std::string m = error_of([&] { (void)read_matrix_market_sparse(p); });
+    EXPECT_NE(m.find("sb_structure_twice.mtx:5: entry (1, 1) given twice (lines 3 and 5)"),
+              std::string::npos)
+        << m;
+}
+
+TEST(MatrixMarket, AnEntryOrSizeLineWithMoreNumbersIsAnError) {
+    const auto complex = write("complex.mtx",
+                               "%%MatrixMarket matrix coordinate real general\n"
+                               "1 1 1\n1 1 1.0 2.0\n");
+    EXPECT_NE(error_of([&] {
+                  (void)read_matrix_market_sparse(complex);
+              }).find(":3: expected 'row column value'"),
+              std::string::npos);
+    const auto size = write("size4.mtx",
+                            "%%MatrixMarket matrix coordinate real general\n"
+                            "1 1 1 1\n1 1 1.0\n");
+    EXPECT_THROW((void)read_matrix_market_size(size), MatrixMarketError);
+}
+
+TEST(MatrixMarket, ADeviceIsNotReadAsAMatrix) {
+    EXPECT_EQ(error_of([] { (void)read_matrix_market_size("/dev/zero"); }),
+              "/dev/zero: not a regular file");
+}
+
 TEST(MatrixMarket, TheSizeComesFromTheHeaderAlone) {
     const auto p = write("size.mtx",
                          "%%MatrixMarket matrix coordinate real general\n% comment\n4 3 1\n"
