@@ -75,8 +75,9 @@ std::string frequency_list(const std::vector<double>& frequency_hz) {
 void print_closest(const id::LevelIdentification& l) {
     const auto line = [&l](const std::vector<double>& f, const char* what) {
         if (f.empty()) return;
-        std::printf("%s %.6g g: %zu point%s with status closest %s (%s)\n", l.arrangement.c_str(),
-                    l.level_g, f.size(), f.size() == 1 ? "" : "s", what, frequency_list(f).c_str());
+        std::printf("%s %.6g g: %zu point%s with status %s %s (%s)\n", l.arrangement.c_str(),
+                    l.level_g, f.size(), f.size() == 1 ? "" : "s",
+                    id::flagged_status_text(l).c_str(), what, frequency_list(f).c_str());
     };
     line(l.skipped_hz, "left out of the fits");
     line(l.closest_used_hz, "kept in the fits by --closest use");

@@ -2,10 +2,12 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "characterize_command.hpp"
 #include "config/errors.hpp"
 #include "identify_command.hpp"
 #include "keys_command.hpp"
 #include "modes_command.hpp"
+#include "predict_command.hpp"
 #include "run_command.hpp"
 
 int main(int argc, char** argv) {
@@ -22,6 +24,8 @@ int main(int argc, char** argv) {
 
     int exit_code = 0;
     sb::apps::register_run_command(app, exit_code);
+    sb::apps::register_characterize_command(app, exit_code);
+    sb::apps::register_predict_command(app, exit_code);
     sb::apps::register_modes_command(app, exit_code);
     sb::apps::register_identify_command(app, exit_code);
     sb::apps::register_keys_command(app, exit_code);

@@ -1,8 +1,10 @@
 // Attachments: the DEM damper and the rigid particles.
 #include "bench/attachment.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
+#include "core/units.hpp"
 #include "dem/setup.hpp"
 
 namespace sb::bench {
@@ -52,12 +54,12 @@ PointLoad DemDamper::weight() const {
     return {w, arm.cross(w)};
 }
 
-AttachmentState DemDamper::state() const { return {solver_->state()}; }
+AttachmentState DemDamper::state() const { return {solver_->state(), std::nullopt}; }
 
 AttachmentState DemDamper::state_at(const PointMotion& motion) {
     // The pose the next step would set anyway: the state is then relative to it.
     solver_->set_enclosure_state(enclosure(motion));
-    return {solver_->state()};
+    return {solver_->state(), std::nullopt};
 }
 
 namespace {
@@ -77,6 +79,78 @@ void DemDamper::restore(const AttachmentState& state) {
 
 void DemDamper::restore_at(const AttachmentState& state, const PointMotion& motion) {
     solver_ = std::make_unique<dem::Solver>(options_, dem_state(state), enclosure(motion));
+}
+
+DescribingFunctionDamper::DescribingFunctionDamper(
+    std::shared_ptr<const DescribingFunction> function, const Eigen::Vector3d& direction,
+    const Eigen::Vector3d& rest_position_m, const PointLoad& weight)
+    : function_(std::move(function)),
+      direction_(direction.normalized()),
+      rest_position_m_(rest_position_m),
+      weight_(weight) {}
+
+void DescribingFunctionDamper::set_frequency(double frequency_hz) {
+    frequency_hz_ = frequency_hz;
+    estimate_from_motion_ = true;
+}
+
+void DescribingFunctionDamper::update_value() {
+    value_ = function_->evaluate(state_.acceleration_m_s2, frequency_hz_);
+}
+
+PointLoad DescribingFunctionDamper::step(const PointMotion& motion, double dt_s) {
+    const double w = hz_to_rad_s(frequency_hz_);
+    const double u = (motion.position_m - rest_position_m_).dot(direction_);
+    const double v = motion.velocity_m_s.dot(direction_);
+    if (estimate_from_motion_) {
+        // A harmonic motion about u0: |a1| = w^2 sqrt((u - u0)^2 + (v / w)^2) at any instant.
+        const double x = u - state_.mean_displacement_m;
+        state_.acceleration_m_s2 = w * w * std::sqrt(x * x + v * v / (w * w));
+        estimate_from_motion_ = false;
+        steps_ = 0;
+        sum_u_ = 0.0;
+        sum_phasor_ = 0.0;
+        update_value();
+    }
+    // The fundamental of u over each whole period since the point (or the frequency) began:
+    // U1 = (2/N) sum u_k e^{-i w t_k}, |a1| = w^2 |U1|, u0 = sum u_k / N.
+    sum_u_ += u;
+    sum_phasor_ += u * std::polar(1.0, -w * dt_s * steps_);
+    ++steps_;
+    const int per_period = std::max(1, static_cast<int>(std::lround(1.0 / (frequency_hz_ * dt_s))));
+    if (steps_ >= per_period) {
+        state_.acceleration_m_s2 = w * w * 2.0 / steps_ * std::abs(sum_phasor_);
+        state_.mean_displacement_m = sum_u_ / steps_;
+        steps_ = 0;
+        sum_u_ = 0.0;
+        sum_phasor_ = 0.0;
+        update_value();
+    }
+    // The coupled specimen applies this load at the END of the step (the structure
+    // interpolates between the two ends): the motion is advanced by dt along the harmonic
+    // motion it describes, x(t + dt) = x cos(w dt) + v/w sin(w dt), so that the load does not
+    // lag by a step. A lag of w dt (2.5e-2 rad at 256 steps per period) turns the apparent
+    // mass's stiffness M' w^2 into a dashpot M' w^2 dt, a third of the paper-000 beam's own
+    // damping.
+    const double x = u - state_.mean_displacement_m;
+    const double c = std::cos(w * dt_s);
+    const double s = std::sin(w * dt_s);
+    const double x_end = x * c + v / w * s;
+    const double v_end = v * c - w * x * s;
+    const std::complex<double> m = value_.apparent_mass_kg;
+    const double q = m.real() * w * w * x_end + w * m.imag() * v_end;
+    return {weight_.force_n + q * direction_, weight_.moment_nm};
+}
+
+AttachmentState DescribingFunctionDamper::state() const {
+    AttachmentState s;
+    s.describing = state_;
+    return s;
+}
+
+void DescribingFunctionDamper::restore(const AttachmentState& state) {
+    if (state.describing) state_ = *state.describing;
+    estimate_from_motion_ = true;
 }
 
 PointLoad step(Attachment& attachment, const PointMotion& motion, double dt_s) {
@@ -101,6 +175,10 @@ void restore(Attachment& attachment, const AttachmentState& s) {
 
 void restore_at(Attachment& attachment, const AttachmentState& s, const PointMotion& motion) {
     std::visit([&](auto& m) { m.restore_at(s, motion); }, attachment.model);
+}
+
+void set_frequency(Attachment& attachment, double frequency_hz) {
+    std::visit([&](auto& m) { m.set_frequency(frequency_hz); }, attachment.model);
 }
 
 const dem::Solver* dem_solver(const Attachment& attachment) {

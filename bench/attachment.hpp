@@ -13,6 +13,7 @@
 #include <variant>
 #include <vector>
 
+#include "bench/describing_function.hpp"
 #include "dem/solver.hpp"
 #include "dem/solver_state.hpp"
 
@@ -32,9 +33,17 @@ struct PointLoad {
     Eigen::Vector3d moment_nm = Eigen::Vector3d::Zero();
 };
 
+/// What a describing-function damper carries between points: what it knows of its point's
+/// motion.
+struct DescribingState {
+    double acceleration_m_s2 = 0.0;    ///< peak |a1| of the point's last whole period [m/s^2]
+    double mean_displacement_m = 0.0;  ///< mean displacement along the direction over it [m]
+};
+
 /// What an attachment carries between points and through a checkpoint.
 struct AttachmentState {
-    std::optional<dem::SolverState> dem;  ///< a DEM damper's particles, histories and clock
+    std::optional<dem::SolverState> dem;        ///< a DEM damper's particles, histories and clock
+    std::optional<DescribingState> describing;  ///< a describing-function damper's amplitude
 };
 
 /// A particle damper simulated by DEM: its enclosure moves with the point (mounted with a
@@ -66,6 +75,8 @@ class DemDamper {
     /// springs (turned with the enclosure), the solver its clock.
     void restore_at(const AttachmentState& state, const PointMotion& motion);
 
+    void set_frequency(double) {}
+
     [[nodiscard]] const dem::Solver& solver() const { return *solver_; }
     [[nodiscard]] dem::EnclosureState enclosure(const PointMotion& motion) const;
 
@@ -85,6 +96,7 @@ struct RigidParticles {
     [[nodiscard]] AttachmentState state_at(const PointMotion&) const { return {}; }
     void restore(const AttachmentState& s) { no_particles(s); }
     void restore_at(const AttachmentState& s, const PointMotion&) { no_particles(s); }
+    void set_frequency(double) {}
 
   private:
     /// Particles in the state of a rigid mass belong to another model: never ignored.
@@ -95,7 +107,56 @@ struct RigidParticles {
     }
 };
 
-using AttachmentModel = std::variant<DemDamper, RigidParticles>;
+/// A particle damper as its describing function (bench/describing_function.hpp): the complex
+/// apparent mass M = M' + i M'' at the amplitude of its point's acceleration along the
+/// excitation direction d over the last whole period. For a harmonic motion u(t) about its
+/// mean u0, F1 = -M a1 is, in time, F = M' w^2 (u - u0) + w M'' v (a = -w^2 (u - u0), and
+/// i a1 is a's quarter-period advance, -w v); it acts along d at the point, with the bed's
+/// weight at its centre of gravity. The load is the one at the end of the step, as the coupled
+/// specimen applies it. The stiffness form rather than -M' a from differenced
+/// velocities: an explicit added mass near the point's own modal mass is unstable in a
+/// staggered loop, a stiffness of M' w^2 (tens of N/m at the paper-000 tip) is not.
+class DescribingFunctionDamper {
+  public:
+    /// `direction`: the excitation direction (normalised here); `rest_position_m`: the
+    /// point at rest; `weight`: the bed's weight as a load on the point.
+    DescribingFunctionDamper(std::shared_ptr<const DescribingFunction> function,
+                             const Eigen::Vector3d& direction,
+                             const Eigen::Vector3d& rest_position_m, const PointLoad& weight);
+
+    /// The excitation frequency of the steps that follow [Hz].
+    void set_frequency(double frequency_hz);
+    PointLoad step(const PointMotion& motion, double dt_s);
+    [[nodiscard]] PointLoad weight() const { return weight_; }
+    [[nodiscard]] AttachmentState state() const;
+    [[nodiscard]] AttachmentState state_at(const PointMotion&) const { return state(); }
+    /// Continues from `state`; the amplitude is estimated again from the first step's motion
+    /// (a period later from the whole period).
+    void restore(const AttachmentState& state);
+    void restore_at(const AttachmentState& state, const PointMotion&) { restore(state); }
+
+    /// The describing function's value in use now.
+    [[nodiscard]] const DescribingFunction::Value& value() const { return value_; }
+    [[nodiscard]] double acceleration_m_s2() const { return state_.acceleration_m_s2; }
+
+  private:
+    void update_value();
+
+    std::shared_ptr<const DescribingFunction> function_;
+    Eigen::Vector3d direction_;
+    Eigen::Vector3d rest_position_m_;
+    PointLoad weight_;
+    double frequency_hz_ = 0.0;
+    DescribingState state_;
+    DescribingFunction::Value value_;
+    bool estimate_from_motion_ = true;  ///< the next step estimates the amplitude from its state
+    // The current period's sums: steps, sum of u, sum of u e^{-i w t_k}.
+    int steps_ = 0;
+    double sum_u_ = 0.0;
+    std::complex<double> sum_phasor_ = 0.0;
+};
+
+using AttachmentModel = std::variant<DemDamper, RigidParticles, DescribingFunctionDamper>;
 
 /// A model at a named point.
 struct Attachment {
@@ -110,6 +171,8 @@ AttachmentState state(const Attachment& attachment);
 AttachmentState state_at(Attachment& attachment, const PointMotion& motion);
 void restore(Attachment& attachment, const AttachmentState& state);
 void restore_at(Attachment& attachment, const AttachmentState& state, const PointMotion& motion);
+/// The excitation frequency of the steps that follow (a describing function needs it).
+void set_frequency(Attachment& attachment, double frequency_hz);
 
 /// The attachment's DEM solver, if it has one.
 const dem::Solver* dem_solver(const Attachment& attachment);

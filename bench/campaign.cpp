@@ -23,9 +23,27 @@ std::string number_text(double v) {
     return buffer;
 }
 
+}  // namespace
+
+/// "H-0 2 g: 2 points with status closest left out of the fits (6.301, 6.412 Hz)".
+std::string skipped_points_line(const id::LevelIdentification& level) {
+    std::ostringstream out;
+    out << level.arrangement << ' ' << number_text(level.level_g)
+        << " g: " << level.skipped_hz.size() << " point"
+        << (level.skipped_hz.size() == 1 ? "" : "s") << " with status "
+        << id::flagged_status_text(level) << " left out of the fits (";
+    for (std::size_t i = 0; i < level.skipped_hz.size(); ++i) {
+        char f[32];
+        std::snprintf(f, sizeof f, "%.3f", level.skipped_hz[i]);
+        out << (i > 0 ? ", " : "") << f;
+    }
+    out << " Hz)";
+    return out.str();
+}
+
 /// recording.toml's channels: the reference, then the control point, then the responses.
-id::Recording make_recording(const CampaignConfig& config,
-                             const std::vector<std::string>& channel_points) {
+id::Recording campaign_recording(const CampaignConfig& config,
+                                 const std::vector<std::string>& channel_points) {
     const auto& excitation = config.structure.excitation;
     id::Recording rec;
     rec.info.name = config.name;
@@ -47,24 +65,6 @@ id::Recording make_recording(const CampaignConfig& config,
     }
     return rec;
 }
-
-/// "H-0 2 g: 2 points with status closest left out of the fits (6.301, 6.412 Hz)".
-std::string skipped_line(const id::LevelIdentification& level) {
-    std::ostringstream out;
-    out << level.arrangement << ' ' << number_text(level.level_g)
-        << " g: " << level.skipped_hz.size() << " point"
-        << (level.skipped_hz.size() == 1 ? "" : "s")
-        << " with status closest left out of the fits (";
-    for (std::size_t i = 0; i < level.skipped_hz.size(); ++i) {
-        char f[32];
-        std::snprintf(f, sizeof f, "%.3f", level.skipped_hz[i]);
-        out << (i > 0 ? ", " : "") << f;
-    }
-    out << " Hz)";
-    return out.str();
-}
-
-}  // namespace
 
 CampaignResult run_campaign(const CampaignConfig& config, const CampaignContext& context) {
     const auto started = std::chrono::steady_clock::now();
@@ -109,7 +109,7 @@ CampaignResult run_campaign(const CampaignConfig& config, const CampaignContext&
     for (const auto& p : campaign.response_points) {
         if (p != campaign.control_point) result.channel_points.push_back(p);
     }
-    result.recording = make_recording(config, result.channel_points);
+    result.recording = campaign_recording(config, result.channel_points);
     CampaignSummary& summary = result.summary;
     for (const auto& sweep : sweeps) {
         summary.points += static_cast<int>(sweep.rows.size());
@@ -129,7 +129,7 @@ CampaignResult run_campaign(const CampaignConfig& config, const CampaignContext&
     result.recording.damping = id::damping_rows(result.levels);
     if (context.progress) {
         for (const auto& level : result.levels) {
-            if (!level.skipped_hz.empty()) context.progress(skipped_line(level));
+            if (!level.skipped_hz.empty()) context.progress(skipped_points_line(level));
         }
     }
     result.sweeps = std::move(sweeps);

@@ -56,6 +56,15 @@ struct CampaignResult {
     std::vector<std::string> channel_points;  ///< control point first
 };
 
+/// "H-0 2 g: 2 points with status closest left out of the fits (6.301, 6.412 Hz)": the line
+/// a campaign prints for a level whose flagged points the fits left out.
+std::string skipped_points_line(const identification::LevelIdentification& level);
+
+/// recording.toml's channels of a campaign of `config`: the reference ("force" or
+/// "base_acc"), then "acc_<point>" for each of `channel_points` (the control point first).
+identification::Recording campaign_recording(const CampaignConfig& config,
+                                             const std::vector<std::string>& channel_points);
+
 /// Runs (or resumes from context.store) the campaign of `config`. Sweeps are independent
 /// tasks run on context.threads threads; the numbers do not depend on the thread count nor
 /// on the store. Throws config::ConfigException when the config or the selection cannot run

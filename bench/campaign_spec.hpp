@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -101,9 +102,13 @@ struct ContactSpec {
 
 /// A particle damper attached to the structure.
 struct DamperSpec {
-    enum class Model { dem, rigid };
-    static constexpr std::pair<Model, std::string_view> kModelNames[] = {{Model::dem, "dem"},
-                                                                         {Model::rigid, "rigid"}};
+    /// dem: the particles simulated; rigid: an equal rigid mass; describing_function: the
+    /// complex apparent mass a characterisation measured (docs/characterisation.md).
+    enum class Model { dem, rigid, describing_function };
+    static constexpr std::pair<Model, std::string_view> kModelNames[] = {
+        {Model::dem, "dem"},
+        {Model::rigid, "rigid"},
+        {Model::describing_function, "describing-function"}};
     /// How the bed is filled before it settles: random insertion into the whole cavity
     /// (loose beds, up to a solid fraction of about 0.35) or pouring in batches that settle
     /// under gravity (dense beds such as paper 002's 90 % fill).
@@ -124,8 +129,11 @@ struct DamperSpec {
     /// Particles locked to the enclosure (a rigid bed moved through the coupling loop; a
     /// check of the loop against the linear model).
     bool locked = false;
-    /// dem: particles simulated; rigid: particles replaced by an equal rigid mass.
+    /// dem: particles simulated; rigid: particles replaced by an equal rigid mass;
+    /// describing_function: the apparent mass of `characterization_file`.
     Model model = Model::dem;
+    /// characterization.csv of `shakerbench characterize` (model = describing_function).
+    std::filesystem::path characterization_file;
     int threads = 1;                      ///< OpenMP threads of this damper's DEM
     double guard_overlap_fraction = 0.5;  ///< overlap / radius beyond which the run stops [-]
     dem::EnclosureOptions enclosure{};

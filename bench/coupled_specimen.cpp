@@ -72,6 +72,7 @@ void CoupledSpecimen::set_frequency(double frequency_hz) {
     steps_per_period_ = std::max(1, blocks) * step_multiple_;
     dt_s_ = period_s / steps_per_period_;
     frequency_hz_ = frequency_hz;
+    for (auto& a : attachments_) bench::set_frequency(a, frequency_hz);
 
     SpecimenState kept;
     const bool had_state = structure_ != nullptr;

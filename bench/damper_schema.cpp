@@ -1,8 +1,13 @@
 // The keys of [dampers.NAME]: mounting, enclosure, particles, contact law, settling.
+#include <algorithm>
+
 #include "bench/campaign_spec.hpp"
+#include "bench/describing_function.hpp"
 #include "bench/schema_parts.hpp"
 #include "config/builder.hpp"
+#include "config/value.hpp"
 #include "dem/contact_law.hpp"
+#include "identification/file_error.hpp"
 
 namespace sb::bench::schema {
 namespace {
@@ -269,6 +274,31 @@ std::shared_ptr<const config::Table> contact_table() {
     return t.build();
 }
 
+/// A describing-function damper's characterisation file: given, readable, with rows for it.
+Violations check_characterization(const DamperSpec& d) {
+    Violations out;
+    if (d.model != DamperSpec::Model::describing_function) return out;
+    const char* meaning = "characterization.csv of this damper";
+    if (d.characterization_file.empty()) {
+        out.push_back({"characterization_file", "",
+                       "is required with model = \"describing-function\"", meaning});
+        return out;
+    }
+    const std::string value = config::quoted(d.characterization_file.string());
+    try {
+        const CharacterizationTable table = read_characterization_csv(d.characterization_file);
+        if (std::none_of(table.rows.begin(), table.rows.end(),
+                         [&](const CharacterizationRow& r) { return r.damper == d.name; })) {
+            out.push_back({"characterization_file", value,
+                           "holds no rows for damper " + config::quoted(d.name), meaning});
+        }
+    } catch (const identification::FileError& e) {
+        out.push_back(
+            {"characterization_file", value, std::string("cannot be read: ") + e.what(), meaning});
+    }
+    return out;
+}
+
 std::shared_ptr<const config::Table> settle_table() {
     TableBuilder<DamperSpec> t(
         "settling under gravity",
@@ -336,8 +366,25 @@ std::shared_ptr<const config::Table> damper_table() {
         "particles locked to the enclosure: a rigid bed whose load still goes through the "
         "coupling loop (a check against the linear model)");
     t.choice(
-        "model", [](DamperSpec & d) -> auto& { return d.model; }, DamperSpec::kModelNames,
-        "dem: simulated particles; rigid: an equal rigid mass");
+         "model", [](DamperSpec & d) -> auto& { return d.model; }, DamperSpec::kModelNames,
+         "how the particles are represented")
+        .doc(
+            "dem: simulated particles; rigid: an equal rigid mass; describing-function: the "
+            "complex apparent mass measured by `shakerbench characterize`, read from "
+            "`characterization_file` and interpolated in amplitude and frequency "
+            "(docs/characterisation.md)");
+    const auto describing = [](const DamperSpec& d) {
+        return d.model == DamperSpec::Model::describing_function;
+    };
+    t.file(
+         "characterization_file", [](DamperSpec & d) -> auto& { return d.characterization_file; },
+         "characterization.csv of this damper (relative to the config's folder)")
+        .optional()
+        .when(describing, "only with model = \"describing-function\"", true)
+        .doc(
+            "`characterization.csv` written by `shakerbench characterize` for this damper "
+            "(same name) and the arrangements run, relative to the config's folder; required "
+            "with model = \"describing-function\"");
     t.integer(
          "threads", [](DamperSpec & d) -> auto& { return d.threads; },
          "OpenMP threads of this damper's DEM (sweeps already run in parallel; 0: OpenMP's "
@@ -363,6 +410,7 @@ std::shared_ptr<const config::Table> damper_table() {
          "settle", [](DamperSpec & d) -> auto& { return d; }, settle_table())
         .leaf("settle");
     t.check([](const DamperSpec& d) { return d.validate(); });
+    t.check([](const DamperSpec& d) { return check_characterization(d); });
     return t.build();
 }
 

@@ -287,11 +287,17 @@ std::string serialize_checkpoint(const SweepCheckpoint& c) {
     w.key("attachments").integer(static_cast<long long>(c.state.attachments.size())).end();
     for (std::size_t d = 0; d < c.state.attachments.size(); ++d) {
         const auto& a = c.state.attachments[d];
-        w.key("attachment").text(a.dem ? "dem" : "none").end();
+        w.key("attachment").text(a.dem ? "dem" : a.describing ? "describing" : "none").end();
         w.key("load");
         for (int k = 0; k < 6; ++k) w.num(c.state.loads[d][k]);
         w.end();
         if (a.dem) write_dem_state(w, *a.dem);
+        if (a.describing) {
+            w.key("describing")
+                .num(a.describing->acceleration_m_s2)
+                .num(a.describing->mean_displacement_m)
+                .end();
+        }
     }
     w.key("rows").integer(static_cast<long long>(c.rows.size())).end();
     for (const auto& row : c.rows) {
@@ -411,7 +417,9 @@ SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& fil
     for (long long d = 0; d < attachments; ++d) {
         r.line("attachment");
         const std::string kind = r.text();
-        if (kind != "dem" && kind != "none") r.fail("unknown attachment '" + kind + "'");
+        if (kind != "dem" && kind != "describing" && kind != "none") {
+            r.fail("unknown attachment '" + kind + "'");
+        }
         auto load = r.line("load");
         Eigen::Matrix<double, 6, 1> l;
         for (int k = 0; k < 6; ++k) l[k] = r.num(load);
@@ -419,6 +427,13 @@ SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& fil
         c.state.loads.push_back(l);
         AttachmentState a;
         if (kind == "dem") a.dem = read_dem_state(r);
+        if (kind == "describing") {
+            auto words = r.line("describing");
+            DescribingState described;
+            described.acceleration_m_s2 = r.num(words);
+            described.mean_displacement_m = r.num(words);
+            a.describing = described;
+        }
         c.state.attachments.push_back(std::move(a));
     }
     const long long rows = read_count(r, "rows");

@@ -16,6 +16,7 @@
 #include "bench/driven_mode.hpp"
 #include "bench/grid_refinement.hpp"
 #include "bench/linear_estimate.hpp"
+#include "bench/prediction.hpp"
 #include "bench/specimen_plant.hpp"
 #include "bench/sweep_checkpoint.hpp"
 #include "control/controller.hpp"
@@ -251,6 +252,10 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
         if (damper.model == DamperSpec::Model::rigid) {
             // Its mass is part of the arrangement's structure (arrangement_structure).
             attachments.push_back({damper.name, damper.point, RigidParticles{}});
+            continue;
+        }
+        if (damper.model == DamperSpec::Model::describing_function) {
+            attachments.push_back(describing_function_attachment(config, damper, prepared));
             continue;
         }
         const dem::ExcitationContact chosen = dem::choose_contact(

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <tuple>
 
@@ -100,6 +101,7 @@ std::vector<LevelIdentification> identify_recording(const Recording& rec,
     std::vector<Key> order;
     std::map<Key, std::map<double, Spectra>> groups;
     std::map<Key, std::vector<double>> closest;
+    std::map<Key, std::set<std::string>> statuses;
     const bool skip = options.closest == ClosestPolicy::skip;
     for (const auto& p : rec.points) {
         const Key key{p.arrangement, p.level_g, p.filling};
@@ -107,8 +109,9 @@ std::vector<LevelIdentification> identify_recording(const Recording& rec,
             order.push_back(key);
             groups[key];  // the level keeps its place even if every point is left out
         }
-        if (p.status == "closest") {
+        if (left_out_of_fits_by_default(p.status)) {
             closest[key].push_back(p.frequency_hz);
+            statuses[key].insert(p.status);
             if (skip) continue;
         }
         const std::complex<double> x = p.values[ref].amplitude;
@@ -134,6 +137,9 @@ std::vector<LevelIdentification> identify_recording(const Recording& rec,
         auto& flagged = skip ? out.back().skipped_hz : out.back().closest_used_hz;
         flagged = closest[key];
         std::sort(flagged.begin(), flagged.end());
+        for (const char* status : kPointStatuses) {
+            if (statuses[key].count(status) != 0) out.back().flagged_statuses.push_back(status);
+        }
     }
     return out;
 }

@@ -65,7 +65,20 @@ struct LevelIdentification {
     /// Frequencies of the points with status `closest` kept in the FRF (ClosestPolicy::use),
     /// one per point, ascending [Hz], so that they are flagged rather than silently used.
     std::vector<double> closest_used_hz{};
+    /// The statuses of those points (closest, extrapolated, uncertain), each once, in the
+    /// order of kPointStatuses.
+    std::vector<std::string> flagged_statuses{};
 };
+
+/// "closest", "extrapolated or uncertain": the statuses of the points flagged at a level, for
+/// the lines that name them ("closest" when none are known).
+inline std::string flagged_status_text(const LevelIdentification& level) {
+    std::string text;
+    for (std::size_t i = 0; i < level.flagged_statuses.size(); ++i) {
+        text += (i == 0 ? "" : " or ") + level.flagged_statuses[i];
+    }
+    return text.empty() ? std::string("closest") : text;
+}
 
 /// The three estimators on one FRF, background subtracted; W/T when `force_reference` (the
 /// FRF is response per newton) and options.effective_mass_kg > 0. `channel` is left empty.

@@ -198,11 +198,13 @@ void read_points_csv(const std::filesystem::path& path, Recording& rec) {
         if (!(p.frequency_hz > 0.0))
             throw FileError(t.file, row[c_f].line, row[c_f].column, "frequency_hz must be > 0");
         p.status = row[c_st].text;
-        if (p.status != "converged" && p.status != "limit-cycle-2" && p.status != "closest" &&
-            p.status != "measured") {
+        if (std::none_of(std::begin(kPointStatuses), std::end(kPointStatuses),
+                         [&](const char* known) { return p.status == known; })) {
+            std::string known;
+            for (const char* k : kPointStatuses)
+                known += (known.empty() ? "" : " | ") + std::string(k);
             throw FileError(t.file, row[c_st].line, row[c_st].column,
-                            "status '" + p.status +
-                                "' must be one of converged | limit-cycle-2 | closest | measured");
+                            "status '" + p.status + "' must be one of " + known);
         }
         if (const auto it = col.find(kFillingColumn); it != col.end()) {
             const auto& cell = row[it->second];

@@ -59,10 +59,12 @@ struct ChannelValue {
 
 /// One row of points.csv.
 struct PointRow {
-    std::string arrangement;           ///< e.g. "H-0"
-    double level_g = 0.0;              ///< target RMS level [g]
-    double frequency_hz = 0.0;         ///< excitation frequency [Hz]
-    std::string status;                ///< converged | limit-cycle-2 | closest | measured
+    std::string arrangement;    ///< e.g. "H-0"
+    double level_g = 0.0;       ///< target RMS level [g]
+    double frequency_hz = 0.0;  ///< excitation frequency [Hz]
+    /// converged | limit-cycle-2 | closest | measured (a run or a lab); predicted |
+    /// extrapolated | uncertain (`shakerbench predict`, docs/characterisation.md)
+    std::string status;
     std::string series;                ///< time history path relative to the directory, or empty
     std::vector<ChannelValue> values;  ///< one per channel, in Recording::channels order
     TimeHistory history{};             ///< the series, loaded and checked; empty without one
@@ -93,6 +95,18 @@ struct DampingRow {
     /// The filling of a per-filling row; -1 for a row over every filling.
     int filling = -1;
 };
+
+/// Every status a points.csv row may have, in the order messages list them.
+inline constexpr const char* kPointStatuses[] = {
+    "converged", "limit-cycle-2", "closest", "measured", "predicted", "extrapolated", "uncertain"};
+
+/// True for the statuses of points that did not hold their level (`closest`) or whose
+/// prediction is not to be trusted (`extrapolated`: outside the characterised grid;
+/// `uncertain`: not converged, unsettled characterisation, strongly non-harmonic): left out
+/// of the fits unless asked for (IdentifyOptions::closest).
+inline bool left_out_of_fits_by_default(const std::string& status) {
+    return status == "closest" || status == "extrapolated" || status == "uncertain";
+}
 
 /// A whole recording directory.
 struct Recording {

@@ -1,0 +1,152 @@
+// `shakerbench characterize`: the describing functions of a config's dampers.
+#include "characterize_command.hpp"
+
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "bench/characterization.hpp"
+#include "config/errors.hpp"
+#include "core/text_file.hpp"
+#include "dem/solver.hpp"
+#include "identification/file_error.hpp"
+#include "load_config.hpp"
+
+namespace sb::apps {
+namespace {
+
+struct CharacterizeArgs {
+    std::string config;
+    std::string out_dir;
+    std::vector<double> levels_g;
+    std::vector<double> frequencies_hz;
+    int frequency_count = 0;
+    int seeds = 3;
+    std::string rotation = "mode";
+    bench::SteadyStateOptions steady;
+    int threads = 0;
+    bool quiet = false;
+    std::vector<std::string> overrides;
+    std::string command_line;
+};
+
+std::string list_text(const std::vector<double>& values) {
+    std::ostringstream out;
+    for (std::size_t i = 0; i < values.size(); ++i) out << (i ? "," : "") << values[i];
+    return out.str();
+}
+
+int run(const CharacterizeArgs& args) {
+    int exit_code = 0;
+    const auto config = load_config_or_report(args.config, args.overrides, exit_code);
+    if (!config) return exit_code;
+    const std::filesystem::path out_dir =
+        args.out_dir.empty() ? std::filesystem::path("out") / (config->name + "-characterization")
+                             : std::filesystem::path(args.out_dir);
+    bench::CharacterizeOptions options;
+    options.levels_g = args.levels_g;
+    options.frequencies_hz = args.frequencies_hz;
+    options.frequency_count = args.frequency_count;
+    options.seeds = args.seeds;
+    options.rotation = args.rotation == "mode";
+    options.steady = args.steady;
+    options.threads = args.threads;
+    options.command_line = args.command_line;
+    if (!args.quiet) {
+        options.progress = [](const std::string& line) { std::cerr << line << '\n' << std::flush; };
+    }
+    try {
+        const bench::CharacterizeResult result = bench::characterize(*config, options);
+        std::filesystem::create_directories(out_dir);
+        const auto file = out_dir / "characterization.csv";
+        write_file_atomically(file, bench::characterization_csv_text(result.table));
+        std::cout << "characterised " << result.table.rows.size() << " grid points (" << result.runs
+                  << " runs over the fillings, " << result.unsettled_runs << " not settled), "
+                  << result.periods << " periods simulated in " << std::fixed
+                  << std::setprecision(1) << result.wall_time_s << " s\n"
+                  << "characterisation: " << file.string() << '\n';
+        return 0;
+    } catch (const config::ConfigException& e) {
+        std::cerr << e.what() << "\nshakerbench characterize: nothing was characterised.\n";
+        return config::kExitBadInput;
+    } catch (const identification::FileError& e) {
+        std::cerr << "shakerbench characterize: " << e.what() << '\n';
+        return config::kExitBadInput;
+    } catch (const dem::SimulationError& e) {
+        std::cerr << "shakerbench characterize: simulation failed: " << e.what() << '\n';
+        return config::kExitFailure;
+    } catch (const std::exception& e) {
+        std::cerr << "shakerbench characterize: " << e.what() << '\n';
+        return config::kExitFailure;
+    }
+}
+
+}  // namespace
+
+void register_characterize_command(CLI::App& app, int& exit_code) {
+    auto args = std::make_shared<CharacterizeArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "characterize",
+        "Characterise every DEM damper of CONFIG alone (no structure): its enclosure moved "
+        "sinusoidally along the excitation direction with each arrangement's gravity and tilt, "
+        "over a grid of levels and frequencies, on several fillings; writes the complex "
+        "apparent mass, dissipated power, force harmonics and bed agitation to "
+        "DIR/characterization.csv (docs/characterisation.md).");
+    cmd->add_option("config", args->config, "campaign config (TOML)");
+    cmd->add_option("-o,--out", args->out_dir,
+                    "output directory (default: out/<campaign name>-characterization)");
+    cmd->add_option("--levels-g", args->levels_g,
+                    "RMS levels of the enclosure's acceleration [g], comma-separated (default: "
+                    "campaign.levels_g)")
+        ->delimiter(',');
+    cmd->add_option("--frequencies-hz", args->frequencies_hz,
+                    "frequencies [Hz], comma-separated (default: each arrangement's grid)")
+        ->delimiter(',');
+    cmd->add_option("--frequency-count", args->frequency_count,
+                    "this many frequencies equally spaced over each arrangement's grid")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--seeds", args->seeds,
+                    "fillings per grid point: campaign.seed, campaign.seed + 1, ... (default 3)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--rotation", args->rotation,
+                    "mode: the point turns as in the driven mode (its shape at the point gives "
+                    "the rotation per translation); none: translation only (default mode)")
+        ->check(CLI::IsMember({"mode", "none"}));
+    cmd->add_option("--transient-periods", args->steady.transient_periods,
+                    "periods left out at the start (default 4)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--window-periods", args->steady.window_periods,
+                    "periods per window of the steady-state test (default 8)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--tolerance", args->steady.tolerance,
+                    "the last two windows' mean fundamentals agree within this fraction of a rigid "
+                    "bed's force m |a1| (default 0.03)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--max-periods", args->steady.max_periods,
+                    "budget of periods per grid point and filling (default 64)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("-j,--threads", args->threads,
+                    "runs in parallel (default: all cores); the numbers do not depend on it")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_flag("-q,--quiet", args->quiet, "no progress lines");
+    add_set_option(*cmd, args->overrides);
+    cmd->callback([args, &exit_code] {
+        std::string line = "shakerbench characterize";
+        if (!args->config.empty()) line += " " + args->config;
+        if (!args->out_dir.empty()) line += " --out " + args->out_dir;
+        if (!args->levels_g.empty()) line += " --levels-g " + list_text(args->levels_g);
+        if (!args->frequencies_hz.empty()) {
+            line += " --frequencies-hz " + list_text(args->frequencies_hz);
+        }
+        if (args->frequency_count > 0) {
+            line += " --frequency-count " + std::to_string(args->frequency_count);
+        }
+        line += " --seeds " + std::to_string(args->seeds) + " --rotation " + args->rotation;
+        line += overrides_text(args->overrides);
+        args->command_line = line;
+        exit_code = run(*args);
+    });
+}
+
+}  // namespace sb::apps

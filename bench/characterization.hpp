@@ -1,0 +1,118 @@
+// Characterising a particle damper alone: its enclosure moved harmonically along the
+// excitation direction (with the arrangement's gravity and tilt, and the rotation that goes
+// with the translation in the driven mode), no structure; per amplitude and frequency the
+// complex apparent mass M = -F1/a1, the dissipated power, the harmonics of the force and the
+// bed's agitation, averaged over several fillings (docs/characterisation.md).
+#pragma once
+
+#include <Eigen/Core>
+#include <complex>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "bench/campaign_config.hpp"
+#include "bench/campaign_plan.hpp"
+#include "bench/describing_function.hpp"
+#include "core/violation.hpp"
+#include "dem/solver.hpp"
+
+namespace sb::bench {
+
+/// When a characterised point is steady. The per-period fundamental of a granular bed's force
+/// fluctuates from period to period (the bed is chaotic), so a single period never settles
+/// exactly: after `transient_periods`, the means of the last two windows of `window_periods`
+/// must agree within `tolerance` times the force a rigid bed of the same mass would exert
+/// (m |a1|). The point's values are the means over those two windows. A point that does not
+/// settle within `max_periods` is flagged and gives the last two windows.
+struct SteadyStateOptions {
+    int transient_periods = 4;  ///< periods left out at the start [-]
+    int window_periods = 8;     ///< periods per window [-]
+    double tolerance = 0.03;    ///< |mean_B - mean_A| <= tolerance m |a1| [-]
+    int max_periods = 64;       ///< budget [-]
+    /// Keys: transient_periods, window_periods, tolerance, max_periods.
+    [[nodiscard]] Violations validate() const;
+    /// One line for the file's header.
+    [[nodiscard]] std::string describe() const;
+};
+
+/// The prescribed motion of the damper's point: acceleration a(t) = A sin(w t) along
+/// `direction`, with the point turned by theta(t) = rotation_per_translation u(t).
+struct HarmonicDrive {
+    Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
+    Eigen::Vector3d rotation_per_translation_rad_m = Eigen::Vector3d::Zero();  ///< [rad/m]
+    double acceleration_m_s2 = 0.0;                                            ///< peak A [m/s^2]
+    double frequency_hz = 0.0;                                                 ///< [Hz]
+};
+
+/// The damper on its point: DEM options (gravity in the structure frame, the contact
+/// stiffness chosen), the mounting, the settled bed (enclosure frame), the largest time step.
+struct EnclosureSetup {
+    dem::SolverOptions options;
+    Eigen::Matrix3d mount_rotation = Eigen::Matrix3d::Identity();  ///< enclosure -> structure
+    Eigen::Vector3d offset_m = Eigen::Vector3d::Zero();  ///< enclosure origin from the point
+    dem::ParticleSet bed;
+    double dt_max_s = 0.0;  ///< the period is split into whole steps no longer than this [s]
+};
+
+/// One characterised point of one filling.
+struct ApparentMassPoint {
+    /// M = -Q1/a1 [kg], Q = F.d + M.psi the particles' generalised force on the point (force
+    /// along the direction, moment about the point along the rotation), over the steady
+    /// window; a1 = -i A.
+    std::complex<double> apparent_mass_kg = 0.0;
+    double power_w = 0.0;    ///< wall work on the particles per period / period [W]
+    double h2_ratio = 0.0;   ///< |Q2| / |Q1| of the window's mean phasors [-]
+    double h3_ratio = 0.0;   ///< |Q3| / |Q1| [-]
+    double kinetic_j = 0.0;  ///< mean kinetic energy relative to the enclosure [J]
+    double bed_mass_kg = 0.0;
+    int periods = 0;       ///< periods simulated
+    bool settled = false;  ///< the criterion was met within the budget
+    int steps_per_period = 0;
+};
+
+/// Runs the damper of `setup` under `drive` until steady (or the budget) and measures it.
+/// Throws dem::SimulationError when a DEM guard fires, std::invalid_argument for a drive or
+/// criterion it cannot run.
+ApparentMassPoint measure_apparent_mass(const EnclosureSetup& setup, const HarmonicDrive& drive,
+                                        const SteadyStateOptions& steady);
+
+/// Rotation per unit translation along `direction` of `point` in the first mode the
+/// excitation drives (the structure with the particles as rigid mass) [rad/m]: a cantilever's
+/// tip turns as it moves.
+Eigen::Vector3d rotation_per_translation(const PreparedArrangement& prepared,
+                                         const std::string& point,
+                                         const Eigen::Vector3d& direction);
+
+/// What to characterise beyond the config.
+struct CharacterizeOptions {
+    std::vector<double> levels_g;        ///< RMS levels [g]; empty: campaign.levels_g
+    std::vector<double> frequencies_hz;  ///< empty: each arrangement's grid
+    /// > 0 and no frequencies_hz: this many frequencies, equally spaced over each
+    /// arrangement's grid.
+    int frequency_count = 0;
+    int seeds = 3;         ///< fillings: campaign.seed, campaign.seed + 1, ...
+    bool rotation = true;  ///< the point turns with the driven mode (else translation only)
+    SteadyStateOptions steady;
+    int threads = 0;  ///< runs in parallel; 0: OpenMP's default
+    /// Receives progress lines; empty: none.
+    std::function<void(const std::string&)> progress;
+    std::string command_line;  ///< for the file's header
+};
+
+struct CharacterizeResult {
+    CharacterizationTable table;
+    int runs = 0;            ///< grid points x fillings simulated
+    int unsettled_runs = 0;  ///< of them, not steady within the budget
+    long long periods = 0;   ///< simulated in all
+    double wall_time_s = 0.0;
+};
+
+/// Characterises every damper of `config` whose model is not rigid, in every selected
+/// arrangement, at every level and frequency, each on `options.seeds` fillings; the runs are
+/// independent and run in parallel (the numbers do not depend on the thread count). Throws
+/// config::ConfigException when there is nothing to characterise (no level, no such damper)
+/// or an option is out of range, dem::SimulationError when a DEM guard fires.
+CharacterizeResult characterize(const CampaignConfig& config, const CharacterizeOptions& options);
+
+}  // namespace sb::bench

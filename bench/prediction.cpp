@@ -1,0 +1,395 @@
+// A campaign predicted by harmonic balance with describing functions.
+#include "bench/prediction.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include "bench/arrangement.hpp"
+#include "bench/resolved_config.hpp"
+#include "config/dotted_path.hpp"
+#include "config/errors.hpp"
+#include "config/value.hpp"
+#include "core/units.hpp"
+#include "identification/file_error.hpp"
+#include "structure/frf.hpp"
+
+namespace sb::bench {
+namespace {
+
+namespace id = identification;
+using Complex = std::complex<double>;
+
+std::string number_text(double v) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.9g", v);
+    return buffer;
+}
+
+config::ConfigError problem(const CampaignConfig& config, std::string key, std::string value,
+                            std::string constraint, std::string meaning) {
+    return {config.source,     0, 0, std::move(key), std::move(value), std::move(constraint),
+            std::move(meaning)};
+}
+
+std::string file_key(const DamperSpec& damper) {
+    return config::join_path(config::join_path("dampers", damper.name), "characterization_file");
+}
+
+/// The characterisation table of a damper, read once per file.
+const CharacterizationTable& table_of(const CampaignConfig& config, const DamperSpec& damper,
+                                      std::map<std::string, CharacterizationTable>& cache) {
+    const std::string file = damper.characterization_file.string();
+    auto it = cache.find(file);
+    if (it != cache.end()) return it->second;
+    try {
+        return cache.emplace(file, read_characterization_csv(damper.characterization_file))
+            .first->second;
+    } catch (const id::FileError& e) {
+        throw config::ConfigException({problem(config, file_key(damper), config::quoted(file),
+                                               std::string("cannot be read: ") + e.what(),
+                                               "characterization.csv of this damper")});
+    }
+}
+
+std::shared_ptr<const DescribingFunction> function_of(const CampaignConfig& config,
+                                                      const DamperSpec& damper,
+                                                      const std::string& arrangement,
+                                                      const CharacterizationTable& table) {
+    const std::string file = damper.characterization_file.string();
+    try {
+        return std::make_shared<const DescribingFunction>(
+            describing_function_for(table, file, damper.name, arrangement));
+    } catch (const id::FileError& e) {
+        throw config::ConfigException(
+            {problem(config, file_key(damper), config::quoted(file),
+                     std::string("has no describing function to use: ") + e.what(),
+                     "characterization.csv of this damper")});
+    }
+}
+
+/// The bed's weight as a load on the point: its mass at the centre of a bed at the
+/// packing of a settled one (0.6) on the enclosure floor, as the rigid model places it.
+PointLoad bed_weight(const ArrangementSpec& arrangement, const DamperSpec& damper, double mass_kg) {
+    const auto& e = damper.enclosure;
+    const double floor_m2 = e.shape == dem::EnclosureShape::cylinder
+                                ? kPi * e.inner_diameter_m * e.inner_diameter_m / 4.0
+                                : e.length_x_m * e.length_y_m;
+    constexpr double kPackingFraction = 0.6;
+    const double depth = std::min(e.height_m, mass_kg / damper.particles.material.density_kg_m3 /
+                                                  kPackingFraction / floor_m2);
+    const DamperMounting mounting = damper_mounting(arrangement, damper);
+    const Eigen::Vector3d arm = mounting.from_enclosure(Eigen::Vector3d(0.0, 0.0, 0.5 * depth));
+    const Eigen::Vector3d w = mass_kg * arrangement_gravity(arrangement);
+    return {w, arm.cross(w)};
+}
+
+/// A describing-function damper of one sweep.
+struct Described {
+    const DamperSpec* spec = nullptr;
+    std::shared_ptr<const DescribingFunction> function;
+};
+
+/// One predicted point.
+struct Solution {
+    double force_n = 0.0;              ///< drive amplitude F0 (force F0 sin(w t)) [N]
+    std::vector<Complex> channels;     ///< acceleration phasors per channel point [m/s^2]
+    std::vector<double> h2, h3;        ///< estimated harmonic ratios per channel point [-]
+    std::vector<double> amplitudes;    ///< |a1| per damper [m/s^2]
+    std::vector<double> drives_tried;  ///< F0 of every iteration [N]
+    int iterations = 0;
+    bool converged = false;
+    bool inside = true;
+    bool settled = true;
+    double damper_harmonics = 0.0;  ///< largest (|a2| + |a3|) / |a1| at a damper point [-]
+};
+
+/// Harmonic balance at one frequency: the structure's accelerances between the drive, the
+/// damper points and the channel points, the dampers as Q_j = -M_j(|a_j|, f) a_j along the
+/// excitation direction d. For a unit force phasor the damper points' accelerations solve
+///   (I + H_pp diag(M)) a_p = H_pd,
+/// the channels follow as a_c = H_cd - H_cp diag(M) a_p, and F0 scales them to the control
+/// target. M depends on |a_p|: a fixed point on the amplitudes, exact in one step when the
+/// control point is the only damper's point (its amplitude is the target's).
+Solution solve_point(const PreparedArrangement& prepared, const std::vector<Described>& dampers,
+                     const std::vector<std::string>& channel_points, double level_g,
+                     double frequency_hz) {
+    const auto& model = prepared.model;
+    const auto& basis = prepared.basis;
+    const auto& excitation = prepared.structure.excitation;
+    const Eigen::Vector3d d = excitation.direction.normalized();
+    const auto accelerance = [&](const std::string& out, const std::string& in, double f) {
+        return structure::modal_accelerance(model, basis, out, d, in, d, f);
+    };
+    const std::size_t nd = dampers.size();
+    const std::size_t nc = channel_points.size();
+    Eigen::VectorXcd h_pd(static_cast<Eigen::Index>(nd));
+    Eigen::MatrixXcd h_pp(static_cast<Eigen::Index>(nd), static_cast<Eigen::Index>(nd));
+    Eigen::VectorXcd h_cd(static_cast<Eigen::Index>(nc));
+    Eigen::MatrixXcd h_cp(static_cast<Eigen::Index>(nc), static_cast<Eigen::Index>(nd));
+    for (std::size_t j = 0; j < nd; ++j) {
+        const auto jj = static_cast<Eigen::Index>(j);
+        h_pd(jj) = accelerance(dampers[j].spec->point, excitation.point, frequency_hz);
+        for (std::size_t k = 0; k < nd; ++k) {
+            h_pp(jj, static_cast<Eigen::Index>(k)) =
+                accelerance(dampers[j].spec->point, dampers[k].spec->point, frequency_hz);
+        }
+    }
+    for (std::size_t c = 0; c < nc; ++c) {
+        const auto cc = static_cast<Eigen::Index>(c);
+        h_cd(cc) = accelerance(channel_points[c], excitation.point, frequency_hz);
+        for (std::size_t k = 0; k < nd; ++k) {
+            h_cp(cc, static_cast<Eigen::Index>(k)) =
+                accelerance(channel_points[c], dampers[k].spec->point, frequency_hz);
+        }
+    }
+    const double target_peak = std::sqrt(2.0) * g_to_m_s2(level_g);
+
+    Solution s;
+    // Start: the amplitudes the structure without the dampers would give at the target.
+    std::vector<double> amplitude(nd);
+    for (std::size_t j = 0; j < nd; ++j) {
+        amplitude[j] =
+            channel_points.front() == dampers[j].spec->point
+                ? target_peak
+                : target_peak * std::abs(h_pd(static_cast<Eigen::Index>(j))) / std::abs(h_cd(0));
+    }
+    Eigen::VectorXcd mass(static_cast<Eigen::Index>(nd));
+    Eigen::VectorXcd a_p;
+    Eigen::VectorXcd a_c;
+    std::vector<DescribingFunction::Value> values(nd);
+    for (int it = 1; it <= kPredictIterations; ++it) {
+        for (std::size_t j = 0; j < nd; ++j) {
+            values[j] = dampers[j].function->evaluate(amplitude[j], frequency_hz);
+            mass(static_cast<Eigen::Index>(j)) = values[j].apparent_mass_kg;
+        }
+        const Eigen::MatrixXcd system = Eigen::MatrixXcd::Identity(static_cast<Eigen::Index>(nd),
+                                                                   static_cast<Eigen::Index>(nd)) +
+                                        h_pp * mass.asDiagonal();
+        a_p = nd == 0 ? Eigen::VectorXcd() : Eigen::VectorXcd(system.partialPivLu().solve(h_pd));
+        a_c = h_cd - h_cp * (mass.asDiagonal() * a_p);
+        s.force_n = target_peak / std::abs(a_c(0));
+        s.drives_tried.push_back(s.force_n);
+        s.iterations = it;
+        double change = 0.0;
+        std::vector<double> next(nd);
+        for (std::size_t j = 0; j < nd; ++j) {
+            next[j] = s.force_n * std::abs(a_p(static_cast<Eigen::Index>(j)));
+            change = std::max(change, std::abs(next[j] - amplitude[j]) / amplitude[j]);
+        }
+        if (change <= kPredictConvergence) {
+            s.converged = true;
+            break;
+        }
+        // Relaxed after the first steps, in case a stiffening bed makes the plain fixed point
+        // oscillate between two amplitudes.
+        const double relax = it <= 10 ? 1.0 : 0.5;
+        for (std::size_t j = 0; j < nd; ++j) {
+            amplitude[j] += relax * (next[j] - amplitude[j]);
+        }
+    }
+    // The force phasor of F0 sin(w t) is -i F0: every response scales by it.
+    const Complex drive(0.0, -s.force_n);
+    s.amplitudes = amplitude;
+    for (std::size_t c = 0; c < nc; ++c)
+        s.channels.push_back(a_c(static_cast<Eigen::Index>(c)) * drive);
+    // Harmonics: the dampers' force harmonics |Q_k| = h_k |Q1| (characterised) reach every
+    // channel through the accelerance at k w; their phases are unknown, so the magnitudes add
+    // (an upper bound when several dampers load the structure).
+    s.h2.assign(nc, 0.0);
+    s.h3.assign(nc, 0.0);
+    for (std::size_t j = 0; j < nd; ++j) {
+        const double q1 =
+            std::abs(mass(static_cast<Eigen::Index>(j)) * a_p(static_cast<Eigen::Index>(j))) *
+            s.force_n;
+        for (std::size_t c = 0; c < nc; ++c) {
+            const double a1 = std::abs(s.channels[c]);
+            if (!(a1 > 0.0)) continue;
+            s.h2[c] += std::abs(accelerance(channel_points[c], dampers[j].spec->point,
+                                            2.0 * frequency_hz)) *
+                       values[j].h2_ratio * q1 / a1;
+            s.h3[c] += std::abs(accelerance(channel_points[c], dampers[j].spec->point,
+                                            3.0 * frequency_hz)) *
+                       values[j].h3_ratio * q1 / a1;
+        }
+        s.inside = s.inside && values[j].inside;
+        s.settled = s.settled && values[j].settled;
+    }
+    // The same at every damper point: what the characterisation's pure sine did not have.
+    std::vector<double> q1(nd);
+    for (std::size_t k = 0; k < nd; ++k) {
+        const auto kk = static_cast<Eigen::Index>(k);
+        q1[k] = std::abs(mass(kk) * a_p(kk)) * s.force_n;
+    }
+    for (std::size_t j = 0; j < nd; ++j) {
+        const double a1 = s.force_n * std::abs(a_p(static_cast<Eigen::Index>(j)));
+        double harmonics = 0.0;
+        for (std::size_t k = 0; k < nd; ++k) {
+            const auto& out = dampers[j].spec->point;
+            const auto& in = dampers[k].spec->point;
+            harmonics +=
+                std::abs(accelerance(out, in, 2.0 * frequency_hz)) * values[k].h2_ratio * q1[k] +
+                std::abs(accelerance(out, in, 3.0 * frequency_hz)) * values[k].h3_ratio * q1[k];
+        }
+        if (a1 > 0.0) s.damper_harmonics = std::max(s.damper_harmonics, harmonics / a1);
+    }
+    return s;
+}
+
+std::string status_of(const Solution& s) {
+    if (!s.converged || !s.settled || s.damper_harmonics > kHarmonicTrustLimit) return "uncertain";
+    if (!s.inside) return "extrapolated";
+    return "predicted";
+}
+
+}  // namespace
+
+Attachment describing_function_attachment(const CampaignConfig& config, const DamperSpec& damper,
+                                          const PreparedArrangement& prepared) {
+    std::map<std::string, CharacterizationTable> cache;
+    const CharacterizationTable& table = table_of(config, damper, cache);
+    auto function = function_of(config, damper, prepared.arrangement.name, table);
+    const PointLoad weight = bed_weight(prepared.arrangement, damper, function->bed_mass_kg());
+    DescribingFunctionDamper model(function, prepared.structure.excitation.direction,
+                                   prepared.model.point(damper.point).position_m, weight);
+    return {damper.name, damper.point, std::move(model)};
+}
+
+CampaignConfig with_describing_functions(const CampaignConfig& config,
+                                         const std::filesystem::path& file) {
+    CampaignConfig out = config;
+    const std::filesystem::path absolute = std::filesystem::absolute(file).lexically_normal();
+    for (auto& d : out.campaign.dampers) {
+        if (d.model != DamperSpec::Model::dem) continue;
+        d.model = DamperSpec::Model::describing_function;
+        d.characterization_file = absolute;
+    }
+    return out;
+}
+
+CampaignResult predict_campaign(const CampaignConfig& config, const PredictContext& context) {
+    const auto started = std::chrono::steady_clock::now();
+    const CampaignSpec& campaign = config.campaign;
+    std::vector<config::ConfigError> problems;
+    for (const auto& d : campaign.dampers) {
+        if (d.model == DamperSpec::Model::dem) {
+            problems.push_back(
+                problem(config, config::join_path(config::join_path("dampers", d.name), "model"),
+                        "\"dem\"", "cannot be predicted: needs model = \"describing-function\"",
+                        "predict solves the structure with describing functions (or give "
+                        "--characterization FILE)"));
+        }
+    }
+    if (config.structure.excitation.kind != structure::ExcitationSpec::Kind::force) {
+        problems.push_back(problem(config, "structure.excitation.kind", "\"base\"",
+                                   "cannot be predicted: predict drives a force",
+                                   "base excitation is run by `shakerbench run` only"));
+    }
+    if (!problems.empty()) throw config::ConfigException(problems);
+    const CampaignPlan plan = plan_campaign(config, context.selection);
+
+    CampaignResult result;
+    result.config_hash = config_hash(config);
+    result.threads = 1;
+    result.channel_points.push_back(campaign.control_point);
+    for (const auto& p : campaign.response_points) {
+        if (p != campaign.control_point) result.channel_points.push_back(p);
+    }
+    std::map<std::string, CharacterizationTable> tables;
+    std::vector<std::string> warned;
+    for (const auto& d : campaign.dampers) {
+        if (d.model != DamperSpec::Model::describing_function) continue;
+        const CharacterizationTable& table = table_of(config, d, tables);
+        const std::string mine = damper_hash(config, d.name);
+        for (const auto& [name, hash] : table.damper_hashes) {
+            if (name == d.name && hash != mine && context.progress) {
+                context.progress("warning: damper " + d.name + " of this config (" + mine +
+                                 ") is not the damper characterised in " +
+                                 d.characterization_file.string() + " (" + hash + ")");
+            }
+        }
+    }
+    if (context.progress) {
+        context.progress("prediction " + config.name + ": " + std::to_string(plan.tasks.size()) +
+                         " sweeps, " + std::to_string(plan.points()) + " points");
+    }
+    for (const SweepTask& task : plan.tasks) {
+        const PreparedArrangement& prepared = *task.prepared;
+        std::vector<Described> dampers;
+        SweepResult sweep;
+        sweep.key = task.key;
+        sweep.arrangement = prepared.arrangement.name;
+        sweep.level_g = task.level_g;
+        sweep.first_mode_hz = prepared.first_mode_hz;
+        sweep.frequencies_hz = task.frequencies_hz;
+        for (const auto& d : campaign.dampers) {
+            if (d.model != DamperSpec::Model::describing_function) continue;
+            const auto& table = table_of(config, d, tables);
+            dampers.push_back({&d, function_of(config, d, prepared.arrangement.name, table)});
+            sweep.settings.push_back(d.name + ": describing function of " +
+                                     d.characterization_file.string() + " (characterised config " +
+                                     table.config_hash + ")");
+        }
+        for (double f : task.frequencies_hz) {
+            const Solution s =
+                solve_point(prepared, dampers, result.channel_points, task.level_g, f);
+            id::PointRow row;
+            row.arrangement = prepared.arrangement.name;
+            row.level_g = task.level_g;
+            row.frequency_hz = f;
+            row.status = status_of(s);
+            id::ChannelValue force;
+            force.rms = s.force_n / std::sqrt(2.0);
+            force.amplitude = Complex(0.0, -s.force_n);
+            force.h2_ratio = 0.0;  // the drive is a pure sine
+            force.h3_ratio = 0.0;
+            row.values.push_back(force);
+            for (std::size_t c = 0; c < s.channels.size(); ++c) {
+                id::ChannelValue v;
+                // The fundamental only: the RMS the harmonics would add is below
+                // kHarmonicTrustLimit^2 / 2 of it wherever a point is trusted.
+                v.rms = std::abs(s.channels[c]) / std::sqrt(2.0);
+                v.amplitude = s.channels[c];
+                v.h2_ratio = s.h2[c];
+                v.h3_ratio = s.h3[c];
+                row.values.push_back(v);
+            }
+            sweep.rows.push_back(row);
+            std::string tried;
+            for (double a : s.drives_tried) tried += (tried.empty() ? "" : ";") + number_text(a);
+            sweep.control_log.push_back(
+                prepared.arrangement.name + "," + number_text(task.level_g) + "," + number_text(f) +
+                "," + row.status + ",0," + std::to_string(s.iterations) + "," +
+                number_text(s.force_n) + "," + number_text(row.values[1].rms) + "," + tried + ",");
+        }
+        result.sweeps.push_back(std::move(sweep));
+    }
+
+    result.recording = campaign_recording(config, result.channel_points);
+    CampaignSummary& summary = result.summary;
+    summary.points = plan.points();
+    for (const auto& sweep : result.sweeps) {
+        result.recording.points.insert(result.recording.points.end(), sweep.rows.begin(),
+                                       sweep.rows.end());
+    }
+    id::IdentifyOptions identify;
+    identify.response_channel = "acc_" + campaign.control_point;
+    result.levels = id::identify_recording(result.recording, identify);
+    result.recording.damping = id::damping_rows(result.levels);
+    if (context.progress) {
+        for (const auto& level : result.levels) {
+            if (!level.skipped_hz.empty()) context.progress(skipped_points_line(level));
+        }
+    }
+    summary.wall_time_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    return result;
+}
+
+}  // namespace sb::bench

@@ -1,0 +1,247 @@
+// The damper characterisation against dampers whose describing function is known in closed
+// form: a locked bed (a rigid mass), a single particle in a gap with elastic (e = 1) and
+// plastic (e -> 0) impacts.
+#include "bench/characterization.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <string>
+
+#include "bench/campaign_config.hpp"
+#include "bench/campaign_plan.hpp"
+#include "campaign_fixtures.hpp"
+#include "core/units.hpp"
+#include "dem/setup.hpp"
+#include "tests/support/small_beam_config.hpp"
+
+namespace sb::bench {
+namespace {
+
+using Complex = std::complex<double>;
+
+/// One steel sphere (3 mm) on the axis of a cylinder with an axial free gap `gap_m`, no
+/// gravity (so that the particle's motion is the textbook impact oscillator), no friction nor
+/// rolling resistance, restitution `e` against the walls. Hooke walls of 1e5 N/m: the largest
+/// overlap at the ~0.4 m/s impacts below is 14 um, 0.3 % of the 5 mm gap, and the contact
+/// lasts 0.1 ms, 1e-3 of a period at 10 Hz, so the impacts are short against the motion.
+EnclosureSetup single_particle(double gap_m, double e) {
+    EnclosureSetup s;
+    auto& o = s.options;
+    o.particles.count = 1;
+    o.particles.diameter_m = 3e-3;
+    o.enclosure.inner_diameter_m = 10e-3;
+    o.enclosure.height_m = 3e-3 + gap_m;
+    o.contact.normal_stiffness = 1e5;
+    o.contact.tangential = dem::TangentialLaw::none;
+    o.contact.rolling = dem::RollingLaw::none;
+    o.contact.particle_wall = {e, 0.0, 0.0};
+    o.contact.particle_particle = {e, 0.0, 0.0};
+    o.gravity_m_s2 = Eigen::Vector3d::Zero();
+    s.bed.positions_m = {Eigen::Vector3d(0.0, 0.0, 1.5e-3 + 0.5 * gap_m)};
+    s.bed.radii_m = {1.5e-3};
+    // About 1/50 of the contact time pi sqrt(m/k) = 0.10 ms.
+    s.dt_max_s = 2e-6;
+    return s;
+}
+
+double sphere_mass_kg(double diameter_m, double density_kg_m3) {
+    return density_kg_m3 * kPi / 6.0 * diameter_m * diameter_m * diameter_m;
+}
+
+/// The impact phase psi of a plastic particle in a gap D shaken as a = A sin(w t),
+/// X = A / w^2: it leaves one wall when the acceleration changes sign, flies at the wall's
+/// largest speed A / w, and meets the other wall when its relative travel
+/// X (psi - sin psi) equals D.
+double impact_phase(double gap_over_amplitude) {
+    double lo = 0.0;
+    double hi = kPi;
+    for (int k = 0; k < 200; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        (mid - std::sin(mid) < gap_over_amplitude ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+/// Apparent mass of a plastic (e = 0) particle of mass m in a gap, no gravity, while
+/// D / X < pi (the flight ends within the half period). Per half period: flight from 0 to
+/// psi (no force), an impact whose impulse on the wall is -m A/w (1 - cos psi), then the
+/// particle rides the wall, F = -m A sin(phi), until pi; the other half is the mirror image.
+/// Q1 = (2/pi) [ -m A int_psi^pi sin(phi) e^{-i phi} dphi - m A (1 - cos psi) e^{-i psi} ],
+/// M = -Q1 / a1 with a1 = -i A. psi -> 0 gives M = m; -Im M = m (1 - cos psi)^2 / pi, which
+/// is the two impacts' energy loss m (A/w)^2 (1 - cos psi)^2 per period as a power.
+Complex plastic_particle_apparent_mass(double m, double gap_over_amplitude) {
+    const double psi = impact_phase(gap_over_amplitude);
+    const Complex i(0.0, 1.0);
+    const Complex integral =
+        1.0 / (2.0 * i) * ((kPi - psi) + (1.0 - std::exp(-2.0 * i * psi)) / (2.0 * i));
+    return m * (2.0 * i / kPi) * (integral + (1.0 - std::cos(psi)) * std::exp(-i * psi));
+}
+
+HarmonicDrive drive_along_axis(double acceleration_m_s2, double frequency_hz) {
+    HarmonicDrive d;
+    d.direction = Eigen::Vector3d::UnitZ();
+    d.acceleration_m_s2 = acceleration_m_s2;
+    d.frequency_hz = frequency_hz;
+    return d;
+}
+
+TEST(Characterization, APlasticParticleInAGapHasTheApparentMassOfItsImpactPattern) {
+    constexpr double kGap = 5e-3;
+    constexpr double kFrequency = 10.0;
+    const double w = hz_to_rad_s(kFrequency);
+    const double m = sphere_mass_kg(3e-3, 7800.0);
+    // e = 0.01, the DEM's nearest to a plastic impact: the rebound carries 1e-4 of the
+    // impact's energy. Two amplitudes: the flight takes 0.62 and 0.32 of a half period.
+    for (const double gap_over_amplitude : {1.0, 0.25}) {
+        const double x_peak = kGap / gap_over_amplitude;
+        const HarmonicDrive drive = drive_along_axis(x_peak * w * w, kFrequency);
+        SteadyStateOptions steady;
+        steady.tolerance = 1e-3;  // the pattern repeats every period once established
+        const ApparentMassPoint point =
+            measure_apparent_mass(single_particle(kGap, 0.01), drive, steady);
+        ASSERT_TRUE(point.settled) << gap_over_amplitude;
+        const Complex exact = plastic_particle_apparent_mass(m, gap_over_amplitude);
+        // 2 % of the particle's mass: the stiffness lets the particle sink 0.3 % of the gap
+        // into the walls, and the dashpot of e = 0.01 is not quite plastic.
+        EXPECT_NEAR(point.apparent_mass_kg.real(), exact.real(), 0.02 * m) << gap_over_amplitude;
+        EXPECT_NEAR(point.apparent_mass_kg.imag(), exact.imag(), 0.02 * m) << gap_over_amplitude;
+        EXPECT_LT(exact.imag(), -0.1 * m) << "the case dissipates";
+        // The ledger's dissipation: two impacts per period, each losing 1/2 m (A/w)^2
+        // (1 - cos psi)^2.
+        const double psi = impact_phase(gap_over_amplitude);
+        const double impact_speed = x_peak * w * (1.0 - std::cos(psi));
+        const double power = m * impact_speed * impact_speed * kFrequency;
+        EXPECT_NEAR(point.power_w, power, 0.02 * power) << gap_over_amplitude;
+    }
+}
+
+TEST(Characterization, AnElasticParticleInAGapDissipatesNothing) {
+    constexpr double kGap = 5e-3;
+    constexpr double kFrequency = 10.0;
+    const double w = hz_to_rad_s(kFrequency);
+    const double m = sphere_mass_kg(3e-3, 7800.0);
+    const double x_peak = kGap;  // the plastic case above dissipates at this amplitude
+    const HarmonicDrive drive = drive_along_axis(x_peak * w * w, kFrequency);
+    // An elastic ball in a shaken gap moves irregularly (the Fermi-Ulam map), so its force
+    // does not repeat from period to period; the window is long enough that the energy it
+    // holds at either end (below 1/2 m (2 A/w)^2) is small against the plastic case's loss.
+    SteadyStateOptions steady;
+    steady.transient_periods = 0;
+    steady.window_periods = 100;
+    steady.tolerance = 1.0;
+    steady.max_periods = 200;
+    const ApparentMassPoint point =
+        measure_apparent_mass(single_particle(kGap, 1.0), drive, steady);
+    const Complex plastic = plastic_particle_apparent_mass(m, 1.0);
+    const double plastic_power =
+        -plastic.imag() * drive.acceleration_m_s2 * drive.acceleration_m_s2 / (2.0 * w);
+    // No dissipation: within 2 % of the particle's mass, and of the plastic particle's power.
+    EXPECT_NEAR(point.apparent_mass_kg.imag(), 0.0, 0.02 * m);
+    EXPECT_NEAR(point.power_w, 0.0, 0.02 * plastic_power);
+}
+
+/// A bed of 30 spheres settled in the paper-000 enclosure under `gravity` (enclosure
+/// frame = structure frame: axis along z).
+EnclosureSetup locked_bed(const Eigen::Vector3d& gravity) {
+    EnclosureSetup s;
+    auto& o = s.options;
+    o.particles.count = 30;
+    o.contact.normal_stiffness = 2e4;
+    o.gravity_m_s2 = gravity;
+    o.track_energy = false;
+    s.bed = dem::settle(o, dem::fill_random(o, 1));
+    o.track_energy = true;
+    o.lock.fraction = 1.0;  // never released
+    s.dt_max_s = 1e-5;
+    return s;
+}
+
+TEST(Characterization, ALockedBedIsARigidMass) {
+    const double m = 30 * sphere_mass_kg(3e-3, 7800.0);
+    // Gravity across the motion (H arrangements) and along it (V): a rigid mass either way.
+    for (const Eigen::Vector3d& gravity : {Eigen::Vector3d(0.0, -kStandardGravity, 0.0),
+                                           Eigen::Vector3d(0.0, 0.0, -kStandardGravity)}) {
+        const ApparentMassPoint point = measure_apparent_mass(
+            locked_bed(gravity), drive_along_axis(g_to_m_s2(2.0), 6.3), SteadyStateOptions{});
+        EXPECT_TRUE(point.settled);
+        EXPECT_NEAR(point.bed_mass_kg, m, 1e-12 * m);
+        // design.md's 2 %: the snap of the locked particles acts half a step late
+        // (w dt / 2 = 2e-4 rad), the rest is rounding.
+        EXPECT_NEAR(point.apparent_mass_kg.real(), m, 0.02 * m) << gravity.transpose();
+        EXPECT_NEAR(point.apparent_mass_kg.imag(), 0.0, 0.02 * m) << gravity.transpose();
+        // It does not move in its enclosure: against the kinetic energy it rides with, 1/2 m
+        // (A/w)^2, nothing but the snap's rounding.
+        const double riding = 0.5 * m * std::pow(g_to_m_s2(2.0) / hz_to_rad_s(6.3), 2);
+        EXPECT_LT(point.kinetic_j, 1e-6 * riding);
+    }
+}
+
+TEST(Characterization, TheLedgersPowerIsTheLossOfTheApparentMass) {
+    // A loose bed of 30 spheres at 2 g: whatever its motion, the walls' work on it per period
+    // is -<Q v>, and v is a pure sine, so P = -(A^2 / 2w) Im M (docs/characterisation.md).
+    EnclosureSetup setup = locked_bed(Eigen::Vector3d(0.0, 0.0, -kStandardGravity));
+    setup.options.lock.fraction = 0.0;
+    const HarmonicDrive drive = drive_along_axis(std::sqrt(2.0) * g_to_m_s2(2.0), 6.3);
+    const ApparentMassPoint point = measure_apparent_mass(setup, drive, SteadyStateOptions{});
+    const double w = hz_to_rad_s(drive.frequency_hz);
+    const double from_mass = -point.apparent_mass_kg.imag() * drive.acceleration_m_s2 *
+                             drive.acceleration_m_s2 / (2.0 * w);
+    EXPECT_GT(point.power_w, 0.0);
+    // 2 %: the ledger takes each step's wall velocity, the fundamental the step's start.
+    EXPECT_NEAR(point.power_w, from_mass, 0.02 * point.power_w);
+}
+
+/// A uniform aluminium cantilever with no added mass: its first mode's tip turns
+/// by w'(L)/w(L) per unit deflection, w = cosh bx - cos bx - s (sinh bx - sin bx),
+/// s = (cosh bL + cos bL) / (sinh bL + sin bL), bL = 1.8751041 (Euler-Bernoulli).
+TEST(Characterization, ACantileverTipTurnsAsItsFirstModeSays) {
+    std::string text = sb::test::kSmallBeamConfig;
+    const auto at = text.find("[[structure.beam.masses]]");
+    text.erase(at, text.find("[structure.excitation]") - at);
+    text += "\n[campaign.frequencies]\ncount = 3\n[arrangements.H-0]\n";
+    text.replace(text.find("name = \"t\""), 10,
+                 "name = \"t\"\nlevels_g = [1.0]\ncontrol_point = \"tip\"");
+    const auto config = load_campaign_config_text(text, "cantilever.toml");
+    const CampaignPlan plan = plan_campaign(config, Selection::of(config, {}, {}));
+    const Eigen::Vector3d psi =
+        rotation_per_translation(plan.arrangements.front(), "tip", Eigen::Vector3d::UnitZ());
+    const double bl = 1.8751040687;
+    const double s = (std::cosh(bl) + std::cos(bl)) / (std::sinh(bl) + std::sin(bl));
+    const double w = std::cosh(bl) - std::cos(bl) - s * (std::sinh(bl) - std::sin(bl));
+    const double slope = bl * (std::sinh(bl) + std::sin(bl) - s * (std::cosh(bl) - std::cos(bl)));
+    const double length = 0.5;
+    // A deflection along +z with a rising slope is a rotation about -y.
+    const double exact = -slope / w / length;
+    // 1 %: 0.5 m x 3 mm is slender (shear and rotary inertia below 1e-4), the elements exact
+    // enough at the first mode.
+    EXPECT_NEAR(psi.y(), exact, 0.01 * std::abs(exact));
+    EXPECT_NEAR(psi.x(), 0.0, 1e-6 * std::abs(exact));
+    EXPECT_NEAR(psi.z(), 0.0, 1e-6 * std::abs(exact));
+}
+
+TEST(Characterization, TheTableIsTheSameOnOneAndTwoThreads) {
+    const std::string text = test::paper000_h0_with({
+        {"count = 120", "count = 30"},
+        {"max_overlap_fraction", "max_overlap_fraction = 0.05"},
+        {"levels_g", "levels_g = [2.0]"},
+    });
+    const auto config = load_campaign_config_text(text, "threads.toml");
+    CharacterizeOptions options;
+    options.frequency_count = 2;
+    options.seeds = 2;
+    options.steady.window_periods = 3;
+    options.steady.transient_periods = 1;
+    options.steady.max_periods = 8;
+    options.threads = 1;
+    const auto one = characterize(config, options);
+    options.threads = 2;
+    const auto two = characterize(config, options);
+    EXPECT_EQ(one.table.rows.size(), 2u);
+    EXPECT_EQ(characterization_csv_text(one.table), characterization_csv_text(two.table));
+    EXPECT_EQ(one.table.rows.front().seeds, 2);
+}
+
+}  // namespace
+}  // namespace sb::bench
