@@ -51,6 +51,7 @@ void set_value_text(CampaignConfig& config, std::string_view path, std::string_v
 
 void apply_overrides(CampaignConfig& config, const std::vector<std::string>& assignments,
                      const std::string& origin) {
+    std::vector<config::TextAssignment> batch;
     for (const auto& assignment : assignments) {
         std::string key;
         std::string value;
@@ -64,8 +65,9 @@ void apply_overrides(CampaignConfig& config, const std::vector<std::string>& ass
                 "dampers.pd.contact.sliding_friction=0.45";
             throw config::ConfigException({e});
         }
-        set_value_text(config, key, value, origin);
+        batch.push_back({key, value});
     }
+    config::set_text_all(campaign_schema(), &config, config.where, batch, {origin, 0, 0});
 }
 
 }  // namespace sb::bench

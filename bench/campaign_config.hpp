@@ -52,8 +52,10 @@ void set_value(CampaignConfig& config, std::string_view path, config::Value valu
 void set_value_text(CampaignConfig& config, std::string_view path, std::string_view text,
                     const std::string& origin);
 
-/// Applies `KEY=VALUE` overrides in order, each checked as it is applied (`--set`); the
-/// first that fails throws config::ConfigException naming its key and `origin`.
+/// Applies `KEY=VALUE` overrides in order (`--set`), as if the file had held all of them:
+/// each checked against its declaration and the checks across keys run once on the result, so
+/// values valid only together can come in any order. Any problem throws
+/// config::ConfigException naming every key at fault and `origin`; nothing is changed then.
 void apply_overrides(CampaignConfig& config, const std::vector<std::string>& assignments,
                      const std::string& origin = "--set");
 

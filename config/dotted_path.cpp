@@ -184,6 +184,39 @@ void set_text(const Table& root, void* object, SourceMap& where, std::string_vie
     apply(root, object, where, t, value, origin);
 }
 
+void set_text_all(const Table& root, void* object, SourceMap& where,
+                  const std::vector<TextAssignment>& assignments, const Origin& origin) {
+    struct Undo {
+        Target target;
+        Value before;
+    };
+    std::vector<Undo> undo;
+    const std::size_t overrides_before = where.overrides.size();
+    const auto undo_all = [&] {
+        for (auto it = undo.rbegin(); it != undo.rend(); ++it) assign(it->target, it->before);
+        where.overrides.resize(overrides_before);
+    };
+    Diagnostics diagnostics;
+    for (const auto& a : assignments) {
+        try {
+            // Resolved after the earlier assignments, so a path may depend on them.
+            const Target t = resolve(root, object, a.path, origin);
+            Value value;
+            if (!value_from_text(decl_of(t), a.text, t.path, origin, diagnostics, value)) continue;
+            undo.push_back({t, stored(t)});
+            assign(t, value);
+            where.overrides.emplace_back(t.path, origin);
+        } catch (const ConfigException& e) {
+            for (const auto& error : e.errors()) diagnostics.add(error);
+        }
+    }
+    if (diagnostics.empty()) check(root, object, where, diagnostics);
+    if (!diagnostics.empty()) {
+        undo_all();
+        diagnostics.throw_if_any();
+    }
+}
+
 bool split_assignment(std::string_view assignment, std::string& key, std::string& value) {
     const auto eq = assignment.find('=');
     if (eq == std::string_view::npos || eq == 0) return false;

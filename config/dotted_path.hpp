@@ -4,6 +4,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "config/errors.hpp"
 #include "config/schema.hpp"
@@ -31,6 +32,20 @@ void set(const Table& root, void* object, SourceMap& where, std::string_view pat
 /// (linear-steady-state, automatic).
 void set_text(const Table& root, void* object, SourceMap& where, std::string_view path,
               std::string_view text, const Origin& origin);
+
+/// One change of a batch: a dotted path and its value as text (as set_text() takes it).
+struct TextAssignment {
+    std::string path;
+    std::string text;
+};
+
+/// Changes several values together, as if the file had held all of them: each is checked
+/// against its declaration, then the checks across keys run once on the whole model, so values
+/// that are only valid together (a damper model and the file it reads; a frequency band moved
+/// past its other end) can be set in any order. Every error of every key is reported at once;
+/// on any problem the model is left as it was.
+void set_text_all(const Table& root, void* object, SourceMap& where,
+                  const std::vector<TextAssignment>& assignments, const Origin& origin);
 
 /// Splits "KEY=VALUE" at its first '='; false when there is none or the key is empty.
 bool split_assignment(std::string_view assignment, std::string& key, std::string& value);

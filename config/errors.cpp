@@ -60,6 +60,8 @@ void Diagnostics::add(const Origin& where, std::string key_path, std::string val
     errors_.push_back(std::move(e));
 }
 
+void Diagnostics::add(ConfigError error) { errors_.push_back(std::move(error)); }
+
 bool Diagnostics::has_error_within(std::string_view key_path) const {
     return std::any_of(errors_.begin(), errors_.end(),
                        [&](const ConfigError& e) { return within(e.key_path, key_path); });

@@ -45,6 +45,7 @@ class Diagnostics {
   public:
     void add(const Origin& where, std::string key_path, std::string value, std::string constraint,
              std::string meaning);
+    void add(ConfigError error);
     [[nodiscard]] bool empty() const { return errors_.empty(); }
     /// True when an error was reported at `key_path` or at a key inside it.
     [[nodiscard]] bool has_error_within(std::string_view key_path) const;

@@ -130,6 +130,38 @@ TEST(ConfigPaths, ApplyOverridesTakesKeyEqualsValueInOrder) {
     EXPECT_EQ(errors_of([&] { apply_overrides(config, {"campaign.seed"}); }).size(), 1u);
 }
 
+TEST(ConfigPaths, OverridesValidOnlyTogetherAreAcceptedInAnyOrderAndAllErrorsReported) {
+    // A band moved above its old upper end: alone, the new lower end would pass the upper one.
+    for (const std::vector<std::string>& order :
+         {std::vector<std::string>{"campaign.frequencies.low_ratio=1.10",
+                                   "campaign.frequencies.high_ratio=1.20"},
+          std::vector<std::string>{"campaign.frequencies.high_ratio=1.20",
+                                   "campaign.frequencies.low_ratio=1.10"}}) {
+        CampaignConfig config = builtin();
+        const std::size_t overrides = config.where.overrides.size();
+        apply_overrides(config, order);
+        EXPECT_EQ(config.campaign.frequencies.low_ratio, 1.10);
+        EXPECT_EQ(config.campaign.frequencies.high_ratio, 1.20);
+        EXPECT_EQ(config.where.overrides.size(), overrides + 2);
+    }
+    // Two bad keys and one good: both errors at once, and nothing changed.
+    CampaignConfig config = builtin();
+    const double low = config.campaign.frequencies.low_ratio;
+    const auto errors = errors_of([&] {
+        apply_overrides(config, {"campaign.frequencies.low_ratio=0.8", "campaign.nosuchkey=1",
+                                 "structure.beam.length_m=-1"});
+    });
+    EXPECT_EQ(errors.size(), 2u);
+    EXPECT_EQ(config.campaign.frequencies.low_ratio, low);
+    // Valid alone, invalid together: the band inverted by the pair is refused as a whole.
+    EXPECT_EQ(errors_of([&] {
+                  apply_overrides(config, {"campaign.frequencies.low_ratio=1.3",
+                                           "campaign.frequencies.high_ratio=1.2"});
+              }).size(),
+              1u);
+    EXPECT_EQ(config.campaign.frequencies.low_ratio, low);
+}
+
 /// fuzz/corpus/config/regression-set-not-utf8.toml: a --set bare word that is not UTF-8 was
 /// taken as the campaign's name, and the resolved config written from it could not be read.
 TEST(ConfigPaths, ABareWordThatIsNotUtf8OrHoldsControlCharactersIsRefused) {
