@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "calibrate_command.hpp"
 #include "characterize_command.hpp"
 #include "config/errors.hpp"
 #include "identify_command.hpp"
@@ -29,6 +30,7 @@ int main(int argc, char** argv) {
     sb::apps::register_modes_command(app, exit_code);
     sb::apps::register_identify_command(app, exit_code);
     sb::apps::register_keys_command(app, exit_code);
+    sb::apps::register_calibrate_command(app, exit_code);
 
     try {
         app.parse(argc, argv);

@@ -209,6 +209,7 @@ std::shared_ptr<const config::Table> contact_table() {
          "particle-particle coefficient of restitution")
         .unit("-")
         .bound(Bound::left_open(0.0, 1.0))
+        .calibrated_within(0.3, 0.98)
         .leaf("particle_particle.restitution");
     t.number(
          "sliding_friction",
@@ -216,6 +217,7 @@ std::shared_ptr<const config::Table> contact_table() {
          "particle-particle sliding friction coefficient")
         .unit("-")
         .bound(Bound::non_negative())
+        .calibrated_within(0.1, 1.0)
         .leaf("particle_particle.sliding_friction");
     t.number(
          "rolling_friction",
@@ -223,6 +225,7 @@ std::shared_ptr<const config::Table> contact_table() {
          "particle-particle rolling friction coefficient")
         .unit("-")
         .bound(Bound::non_negative())
+        .calibrated_within(0.0, 0.05)
         .leaf("particle_particle.rolling_friction");
     t.number(
          "wall_restitution", [](ContactSpec & c) -> auto& { return c.wall_restitution; },

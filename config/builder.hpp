@@ -51,6 +51,11 @@ class TableBuilder {
             decl().bound = b;
             return *this;
         }
+        /// The interval calibration searches when this key is freed without one.
+        Ref& calibrated_within(double lo, double hi) {
+            decl().calibration_range = std::array<double, 2>{lo, hi};
+            return *this;
+        }
         Ref& required() {
             decl().presence = Presence::required;
             return *this;

@@ -140,6 +140,10 @@ std::string markdown_meaning(const Declaration& d) {
     if (d.presence == Presence::automatic && !d.automatic.empty()) {
         text += "; " + code(config::quoted(kAutomatic)) + ": " + d.automatic;
     }
+    if (d.calibration_range) {
+        text += "; calibrated within [" + value_text((*d.calibration_range)[0]) + ", " +
+                value_text((*d.calibration_range)[1]) + "] unless `--free` says otherwise";
+    }
     if (!d.inactive_reason.empty()) {
         text += " (" + d.inactive_reason + ")";
     }

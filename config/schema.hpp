@@ -4,6 +4,7 @@
 // of docs/config.md all walk these tables; config/builder.hpp declares them.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -63,6 +64,10 @@ struct Declaration {
     std::string inactive_reason;
     /// A key that does not apply but is given is an error (otherwise it is ignored).
     bool reject_inactive = false;
+    /// The default search interval of `shakerbench calibrate` when this key is freed without
+    /// one: the physically plausible values, narrower than `bound` (which only says what can
+    /// run). Absent: a freed key needs its interval on the command line.
+    std::optional<std::array<double, 2>> calibration_range;
     /// Whole numbers this integer member can hold.
     double integer_lo = -1e9;
     double integer_hi = 1e9;

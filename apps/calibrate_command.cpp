@@ -1,0 +1,150 @@
+// `shakerbench calibrate`: the free values of a config fitted to a measurement, within a budget
+// of simulations, and the report of what the data identify.
+#include "calibrate_command.hpp"
+
+#include <iomanip>
+#include <iostream>
+#include <memory>
+
+#include "config/errors.hpp"
+#include "core/text_file.hpp"
+#include "correlation/calibration.hpp"
+#include "identification/file_error.hpp"
+#include "load_config.hpp"
+
+namespace sb::apps {
+namespace {
+
+struct CalibrateArgs {
+    std::string config;
+    std::string measured;
+    std::vector<std::string> free;
+    int budget = 30;
+    std::string mode = "direct";
+    std::string out_dir;
+    int threads = 0;
+    double damping_uncertainty = 0.05;
+    double frequency_uncertainty = 0.002;
+    double frf_uncertainty = 0.05;
+    bool quiet = false;
+    std::vector<std::string> overrides;
+    std::string command_line;
+};
+
+int run(const CalibrateArgs& args) {
+    int exit_code = 0;
+    auto config = load_config_or_report(args.config, args.overrides, exit_code);
+    if (!config) return exit_code;
+    correlation::StatedUncertainty stated;
+    stated.damping_relative = args.damping_uncertainty;
+    stated.frequency_relative = args.frequency_uncertainty;
+    stated.frf_relative = args.frf_uncertainty;
+    try {
+        const auto measurement = correlation::read_measurement(args.measured, stated);
+        const auto free = args.free.empty()
+                              ? correlation::default_free_parameters(*config)
+                              : correlation::parse_free_parameters(*config, args.free);
+        const std::filesystem::path out_dir =
+            args.out_dir.empty() ? std::filesystem::path("out") / (config->name + "-calibrated")
+                                 : std::filesystem::path(args.out_dir);
+        correlation::CalibrationOptions options;
+        options.search.mode = args.mode == "surrogate" ? correlation::SearchMode::surrogate
+                                                       : correlation::SearchMode::direct;
+        options.search.budget = args.budget;
+        options.threads = args.threads;
+        options.cache_dir = out_dir / "cache";
+        if (!args.quiet) {
+            std::cerr << "calibrating " << free.size() << " value(s) against "
+                      << measurement.features.size() << " features of " << args.measured << " ("
+                      << measurement.depth << "), "
+                      << correlation::search_mode_name(options.search.mode) << " search, budget "
+                      << args.budget << " evaluations\n";
+            options.progress = [](const std::string& line) {
+                std::cerr << line << '\n' << std::flush;
+            };
+        }
+        const auto result = correlation::calibrate(*config, measurement, free, options);
+        correlation::write_calibration(out_dir, result, measurement, args.command_line);
+        std::cout << "calibration " << config->name << ": " << result.outcome.evaluations
+                  << " evaluations (" << result.simulations << " simulated), misfit "
+                  << std::setprecision(4) << result.start.misfit << " -> " << result.best.misfit
+                  << '\n';
+        for (std::size_t j = 0; j < free.size(); ++j) {
+            std::cout << "  " << free[j].path << ": ";
+            if (j < result.findings.size() && !result.findings[j].identifiable) {
+                std::cout << "not identifiable (" << result.findings[j].reason << ")\n";
+            } else if (j < result.findings.size()) {
+                std::cout << result.findings[j].value << " (" << result.findings[j].reason << ")\n";
+            } else {
+                std::cout << result.best.values[j] << '\n';
+            }
+        }
+        std::cout << "report: " << (out_dir / "report.md").string() << '\n';
+        return 0;
+    } catch (const config::ConfigException& e) {
+        std::cerr << e.what() << "\nshakerbench calibrate: nothing was simulated.\n";
+        return config::kExitBadInput;
+    } catch (const identification::FileError& e) {
+        std::cerr << "shakerbench calibrate: " << e.what() << '\n';
+        return config::kExitBadInput;
+    } catch (const std::invalid_argument& e) {
+        std::cerr << "shakerbench calibrate: " << e.what() << '\n';
+        return config::kExitBadInput;
+    } catch (const std::exception& e) {
+        std::cerr << "shakerbench calibrate: " << e.what() << '\n';
+        return config::kExitFailure;
+    }
+}
+
+}  // namespace
+
+void register_calibrate_command(CLI::App& app, int& exit_code) {
+    auto args = std::make_shared<CalibrateArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "calibrate",
+        "Fit config values (default: the particles' sliding and rolling friction and "
+        "restitution) to a measured recording directory: only its arrangements, levels and "
+        "frequencies are simulated, every evaluation cached in OUT/cache, and the report says "
+        "which values the data identify (docs/calibration.md).");
+    cmd->add_option("config", args->config, "campaign config (TOML)");
+    cmd->add_option("--measured", args->measured,
+                    "measured recording directory (damping.csv, points.csv, time histories)")
+        ->required();
+    cmd->add_option("--free", args->free,
+                    "a value to fit, KEY=MIN:MAX or KEY (its declared interval); repeatable");
+    cmd->add_option("--budget", args->budget, "evaluations at most (default 30)")
+        ->check(CLI::Range(1, 100000));
+    cmd->add_option("--mode", args->mode,
+                    "direct (DIRECT-L then BOBYQA) or surrogate (emulator, expected improvement)")
+        ->check(CLI::IsMember({"direct", "surrogate"}));
+    cmd->add_option("-o,--out", args->out_dir,
+                    "output directory (default: out/<campaign name>-calibrated)");
+    cmd->add_option("-j,--threads", args->threads, "threads (default: all cores)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--damping-uncertainty", args->damping_uncertainty,
+                    "relative uncertainty of a measured damping ratio without repeats "
+                    "(default 0.05)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--frequency-uncertainty", args->frequency_uncertainty,
+                    "relative uncertainty of a measured natural frequency without repeats "
+                    "(default 0.002)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--frf-uncertainty", args->frf_uncertainty,
+                    "relative uncertainty of a measured FRF point without repeats, of |H| and "
+                    "of the phase in rad (default 0.05)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_flag("-q,--quiet", args->quiet, "no progress lines");
+    add_set_option(*cmd, args->overrides);
+    cmd->callback([args, &exit_code] {
+        args->command_line = "shakerbench calibrate";
+        if (!args->config.empty()) args->command_line += " " + args->config;
+        args->command_line += " --measured " + args->measured;
+        for (const auto& f : args->free) args->command_line += " --free " + f;
+        args->command_line += " --budget " + std::to_string(args->budget) + " --mode " + args->mode;
+        if (!args->out_dir.empty()) args->command_line += " --out " + args->out_dir;
+        args->command_line += overrides_text(args->overrides);
+        exit_code = run(*args);
+    });
+}
+
+}  // namespace sb::apps

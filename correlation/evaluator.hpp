@@ -1,0 +1,88 @@
+// One evaluation of a calibration: the config with the free values set, its campaign simulated
+// on exactly what the measurement has (in memory), reduced to the measurement's features and
+// compared. Every evaluation is cached by the resolved config's hash and the measurement's
+// feature layout, in memory and in a folder, so a calibration interrupted or run again reuses
+// what was simulated.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "bench/campaign_config.hpp"
+#include "correlation/features.hpp"
+#include "correlation/free_parameters.hpp"
+
+namespace sb::correlation {
+
+/// The result of one evaluation.
+struct Evaluation {
+    std::vector<double> values;  ///< the free parameters' values
+    std::string key;             ///< config hash + feature layout hash
+    SimulatedFeatures simulated;
+    std::vector<double> residuals;  ///< per feature, in standard deviations
+    double misfit = 0.0;            ///< ½ Σ residual² (a negative log-likelihood)
+    bool from_cache = false;
+    double wall_time_s = 0.0;  ///< of the simulation (0 from the cache)
+    std::string error;         ///< why the simulation failed; empty when it ran
+};
+
+/// Misfit given to an evaluation whose simulation failed: larger than any real one, finite so
+/// that the optimisers keep going around it.
+inline constexpr double kFailedMisfit = 1e12;
+
+struct EvaluatorOptions {
+    int threads = 0;  ///< shared by the evaluations of a batch; 0: the hardware's
+    /// Where each evaluation's features are kept (one small file per key); empty: memory only.
+    std::filesystem::path cache_dir;
+    /// Receives one line per evaluation (values, misfit, time); empty: none.
+    std::function<void(const std::string&)> progress;
+    /// Simulates a config on a measurement's selection: the coupled campaign by default
+    /// (bench::run_campaign with no store); a test or the two-fidelity mode may give the
+    /// describing-function prediction instead.
+    std::function<bench::CampaignResult(const bench::CampaignConfig&, const bench::Selection&,
+                                        int threads)>
+        simulate;
+};
+
+class Evaluator {
+  public:
+    Evaluator(bench::CampaignConfig config, std::vector<FreeParameter> free,
+              Measurement measurement, EvaluatorOptions options);
+
+    /// Evaluates each set of values (a batch runs in parallel, the threads shared among its
+    /// simulations); a value set seen before comes from the cache.
+    std::vector<Evaluation> evaluate(const std::vector<std::vector<double>>& values);
+    Evaluation evaluate(const std::vector<double>& values);
+
+    /// Every evaluation so far, in the order asked.
+    [[nodiscard]] const std::vector<Evaluation>& history() const { return history_; }
+    /// Evaluations simulated (not taken from the cache).
+    [[nodiscard]] int simulations() const { return simulations_; }
+    [[nodiscard]] const std::vector<FreeParameter>& free() const { return free_; }
+    [[nodiscard]] const Measurement& measurement() const { return measurement_; }
+    [[nodiscard]] const bench::CampaignConfig& config() const { return config_; }
+
+    /// Residuals and misfit of simulated features against the measurement.
+    void compare(Evaluation& evaluation) const;
+
+  private:
+    Evaluation run_one(const std::vector<double>& values, int threads) const;
+    bool load(const std::string& key, Evaluation& evaluation) const;
+    void store(const Evaluation& evaluation) const;
+
+    bench::CampaignConfig config_;
+    std::vector<FreeParameter> free_;
+    Measurement measurement_;
+    EvaluatorOptions options_;
+    std::string layout_hash_;
+    std::vector<Evaluation> history_;
+    int simulations_ = 0;
+};
+
+/// 16 hexadecimal digits of FNV-1a over `text`: stable across runs and machines.
+std::string stable_hash(const std::string& text);
+
+}  // namespace sb::correlation
