@@ -8,6 +8,7 @@ namespace sb::bench {
 namespace {
 
 constexpr const char* kMagic = "shakerbench-sweep-checkpoint 3";
+constexpr const char* kResultMagic = "shakerbench-sweep-result 1";
 
 class Writer {
   public:
@@ -232,6 +233,81 @@ dem::SolverState read_dem_state(Reader& r) {
     return s;
 }
 
+void write_rows(Writer& w, const std::vector<identification::PointRow>& rows) {
+    w.key("rows").integer(static_cast<long long>(rows.size())).end();
+    for (const auto& row : rows) {
+        w.key("row")
+            .num(row.level_g)
+            .num(row.frequency_hz)
+            .integer(static_cast<long long>(row.values.size()));
+        for (const auto& v : row.values) {
+            w.num(v.rms)
+                .num(v.amplitude.real())
+                .num(v.amplitude.imag())
+                .num(v.h2_ratio)
+                .num(v.h3_ratio);
+        }
+        w.text(row.arrangement).text(row.status).text(row.series.empty() ? "-" : row.series);
+        w.end();
+    }
+}
+
+std::vector<identification::PointRow> read_rows(Reader& r) {
+    std::vector<identification::PointRow> out;
+    const long long rows = read_count(r, "rows");
+    for (long long i = 0; i < rows; ++i) {
+        auto words = r.line("row");
+        identification::PointRow row;
+        row.level_g = r.num(words);
+        row.frequency_hz = r.num(words);
+        const long long values = r.integer(words);
+        for (long long k = 0; k < values; ++k) {
+            identification::ChannelValue v;
+            v.rms = r.num(words);
+            const double re = r.num(words);
+            const double im = r.num(words);
+            v.amplitude = {re, im};
+            v.h2_ratio = r.num(words);
+            v.h3_ratio = r.num(words);
+            row.values.push_back(v);
+        }
+        std::string rest;
+        std::getline(words, rest);
+        std::istringstream fields(rest);
+        std::string skip;
+        std::getline(fields, skip, '\t');
+        if (!std::getline(fields, row.arrangement, '\t') ||
+            !std::getline(fields, row.status, '\t') || !std::getline(fields, row.series, '\t')) {
+            r.fail("a row lacks its arrangement, status or series");
+        }
+        if (row.series == "-") {
+            row.series.clear();
+        }
+        out.push_back(std::move(row));
+    }
+    return out;
+}
+
+/// "KEY n", then n lines "LINE_KEY<tab>text".
+void write_lines(Writer& w, const char* key, const char* line_key,
+                 const std::vector<std::string>& lines) {
+    w.key(key).integer(static_cast<long long>(lines.size())).end();
+    for (const auto& l : lines) {
+        w.key(line_key).text(l).end();
+    }
+}
+
+std::vector<std::string> read_lines(Reader& r, const char* key, const char* line_key) {
+    std::vector<std::string> out;
+    const long long count = read_count(r, key);
+    for (long long i = 0; i < count; ++i) {
+        r.line(line_key);
+        const auto tab = r.current().find('\t');
+        out.push_back(tab == std::string::npos ? "" : r.current().substr(tab + 1));
+    }
+    return out;
+}
+
 }  // namespace
 
 std::string serialize_checkpoint(const SweepCheckpoint& c) {
@@ -251,30 +327,9 @@ std::string serialize_checkpoint(const SweepCheckpoint& c) {
         w.end();
         if (a.dem) write_dem_state(w, *a.dem);
     }
-    w.key("rows").integer(static_cast<long long>(c.rows.size())).end();
-    for (const auto& row : c.rows) {
-        w.key("row")
-            .num(row.level_g)
-            .num(row.frequency_hz)
-            .integer(static_cast<long long>(row.values.size()));
-        for (const auto& v : row.values) {
-            w.num(v.rms)
-                .num(v.amplitude.real())
-                .num(v.amplitude.imag())
-                .num(v.h2_ratio)
-                .num(v.h3_ratio);
-        }
-        w.text(row.arrangement).text(row.status).text(row.series.empty() ? "-" : row.series);
-        w.end();
-    }
-    w.key("log").integer(static_cast<long long>(c.control_log.size())).end();
-    for (const auto& l : c.control_log) {
-        w.key("l").text(l).end();
-    }
-    w.key("energy").integer(static_cast<long long>(c.energy_log.size())).end();
-    for (const auto& l : c.energy_log) {
-        w.key("e").text(l).end();
-    }
+    write_rows(w, c.rows);
+    write_lines(w, "log", "l", c.control_log);
+    write_lines(w, "energy", "e", c.energy_log);
     w.key("end").end();
     return w.str();
 }
@@ -312,51 +367,79 @@ SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& fil
         if (kind == "dem") a.dem = read_dem_state(r);
         c.state.attachments.push_back(std::move(a));
     }
-    const long long rows = read_count(r, "rows");
-    for (long long i = 0; i < rows; ++i) {
-        auto words = r.line("row");
-        identification::PointRow row;
-        row.level_g = r.num(words);
-        row.frequency_hz = r.num(words);
-        const long long values = r.integer(words);
-        for (long long k = 0; k < values; ++k) {
-            identification::ChannelValue v;
-            v.rms = r.num(words);
-            const double re = r.num(words);
-            const double im = r.num(words);
-            v.amplitude = {re, im};
-            v.h2_ratio = r.num(words);
-            v.h3_ratio = r.num(words);
-            row.values.push_back(v);
-        }
-        std::string rest;
-        std::getline(words, rest);
-        std::istringstream fields(rest);
-        std::string skip;
-        std::getline(fields, skip, '\t');
-        if (!std::getline(fields, row.arrangement, '\t') ||
-            !std::getline(fields, row.status, '\t') || !std::getline(fields, row.series, '\t')) {
-            r.fail("a row lacks its arrangement, status or series");
-        }
-        if (row.series == "-") {
-            row.series.clear();
-        }
-        c.rows.push_back(std::move(row));
-    }
-    const long long logs = read_count(r, "log");
-    for (long long i = 0; i < logs; ++i) {
-        r.line("l");
-        const auto tab = r.current().find('\t');
-        c.control_log.push_back(tab == std::string::npos ? "" : r.current().substr(tab + 1));
-    }
-    const long long energy = read_count(r, "energy");
-    for (long long i = 0; i < energy; ++i) {
-        r.line("e");
-        const auto tab = r.current().find('\t');
-        c.energy_log.push_back(tab == std::string::npos ? "" : r.current().substr(tab + 1));
-    }
+    c.rows = read_rows(r);
+    c.control_log = read_lines(r, "log", "l");
+    c.energy_log = read_lines(r, "energy", "e");
     r.line("end");
     return c;
+}
+
+std::string serialize_sweep_result(const SweepResult& s) {
+    Writer w;
+    w.key(kResultMagic).end();
+    w.key("key").text(s.key).end();
+    w.key("arrangement").text(s.arrangement).end();
+    w.key("level_g").num(s.level_g).end();
+    w.key("first_mode_hz").num(s.first_mode_hz).end();
+    w.key("frequencies_hz").integer(static_cast<long long>(s.frequencies_hz.size()));
+    for (double f : s.frequencies_hz) w.num(f);
+    w.end();
+    write_lines(w, "settings", "s", s.settings);
+    write_rows(w, s.rows);
+    w.key("fillings");
+    for (const auto& row : s.rows) w.integer(row.filling);
+    w.end();
+    write_lines(w, "log", "l", s.control_log);
+    write_lines(w, "energy", "e", s.energy_log);
+    w.key("resumed_points").integer(s.resumed_points).end();
+    w.key("periods_simulated").integer(s.periods_simulated).end();
+    w.key("end").end();
+    return w.str();
+}
+
+SweepResult parse_sweep_result(const std::string& text, const std::string& source) {
+    Reader r(text, source);
+    SweepResult s;
+    const auto text_of = [&r](const char* key) {
+        r.line(key);
+        const auto tab = r.current().find('\t');
+        return tab == std::string::npos ? std::string() : r.current().substr(tab + 1);
+    };
+    r.line(kResultMagic);
+    s.key = text_of("key");
+    s.arrangement = text_of("arrangement");
+    {
+        auto words = r.line("level_g");
+        s.level_g = r.num(words);
+    }
+    {
+        auto words = r.line("first_mode_hz");
+        s.first_mode_hz = r.num(words);
+    }
+    {
+        auto words = r.line("frequencies_hz");
+        const long long n = r.integer(words);
+        if (n < 0 || n > 100000) r.fail("implausible size");
+        for (long long i = 0; i < n; ++i) s.frequencies_hz.push_back(r.num(words));
+    }
+    s.settings = read_lines(r, "settings", "s");
+    s.rows = read_rows(r);
+    {
+        auto words = r.line("fillings");
+        for (auto& row : s.rows) row.filling = static_cast<int>(r.integer(words));
+    }
+    s.control_log = read_lines(r, "log", "l");
+    s.energy_log = read_lines(r, "energy", "e");
+    {
+        auto words = r.line("resumed_points");
+        s.resumed_points = static_cast<int>(r.integer(words));
+    }
+    {
+        auto words = r.line("periods_simulated");
+        s.periods_simulated = r.integer(words);
+    }
+    r.line("end");
+    return s;
 }
 
 std::string checkpoint_config_hash(const std::string& text) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bench/coupled_specimen.hpp"
+#include "bench/sweep_runner.hpp"
 #include "identification/recording.hpp"
 
 namespace sb::bench {
@@ -30,6 +31,14 @@ std::string serialize_checkpoint(const SweepCheckpoint& checkpoint);
 /// Reads serialize_checkpoint()'s text; a damaged file throws std::runtime_error naming the
 /// file and line.
 SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& file_name);
+
+/// A finished sweep's results in the same text form (every number exact): how a sweep run in
+/// another process comes back to the one that assembles the campaign.
+std::string serialize_sweep_result(const SweepResult& result);
+
+/// Reads serialize_sweep_result()'s text; damaged text throws std::runtime_error naming
+/// `source` and the line.
+SweepResult parse_sweep_result(const std::string& text, const std::string& source);
 
 /// The config hash a checkpoint's text was written with; empty when the text has none (a
 /// checkpoint of an older format, or not a checkpoint).
