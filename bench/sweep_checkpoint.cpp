@@ -374,25 +374,25 @@ SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& fil
     return c;
 }
 
-std::string serialize_sweep_result(const SweepResult& s) {
+std::string serialize_sweep_result(const SweepResult& result) {
     Writer w;
     w.key(kResultMagic).end();
-    w.key("key").text(s.key).end();
-    w.key("arrangement").text(s.arrangement).end();
-    w.key("level_g").num(s.level_g).end();
-    w.key("first_mode_hz").num(s.first_mode_hz).end();
-    w.key("frequencies_hz").integer(static_cast<long long>(s.frequencies_hz.size()));
-    for (double f : s.frequencies_hz) w.num(f);
+    w.key("key").text(result.key).end();
+    w.key("arrangement").text(result.arrangement).end();
+    w.key("level_g").num(result.level_g).end();
+    w.key("first_mode_hz").num(result.first_mode_hz).end();
+    w.key("frequencies_hz").integer(static_cast<long long>(result.frequencies_hz.size()));
+    for (double f : result.frequencies_hz) w.num(f);
     w.end();
-    write_lines(w, "settings", "s", s.settings);
-    write_rows(w, s.rows);
+    write_lines(w, "settings", "s", result.settings);
+    write_rows(w, result.rows);
     w.key("fillings");
-    for (const auto& row : s.rows) w.integer(row.filling);
+    for (const auto& row : result.rows) w.integer(row.filling);
     w.end();
-    write_lines(w, "log", "l", s.control_log);
-    write_lines(w, "energy", "e", s.energy_log);
-    w.key("resumed_points").integer(s.resumed_points).end();
-    w.key("periods_simulated").integer(s.periods_simulated).end();
+    write_lines(w, "log", "l", result.control_log);
+    write_lines(w, "energy", "e", result.energy_log);
+    w.key("resumed_points").integer(result.resumed_points).end();
+    w.key("periods_simulated").integer(result.periods_simulated).end();
     w.key("end").end();
     return w.str();
 }

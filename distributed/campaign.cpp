@@ -68,7 +68,7 @@ std::optional<std::string> from_optional_text(const std::string& reply) {
 class RemoteStore : public bench::CheckpointStore {
   public:
     explicit RemoteStore(Link& link) : link_(link) {}
-    void open(const std::string&, bool) override {
+    void open(const std::string& /*config_hash*/, bool /*restart*/) override {
         throw std::logic_error("RemoteStore: rank 0 opens the store");
     }
     std::optional<std::string> load_checkpoint(const std::string& key) override {
@@ -224,7 +224,14 @@ std::vector<bench::SweepResult> DistributedSweeps::run(const bench::CampaignConf
     queue.serve = [&](const std::string& request) {
         return serve_sweep_request(request, plan, store, progress);
     };
-    const std::vector<TaskOutcome> outcomes = distribute_tasks(transport_, queue);
+    std::vector<TaskOutcome> outcomes;
+    try {
+        outcomes = distribute_tasks(transport_, queue);
+    } catch (...) {
+        // The queue itself broke (not a sweep): the destructor releases the other ranks.
+        started_ = false;
+        throw;
+    }
 
     per_rank_.assign(static_cast<std::size_t>(processes()), 0);
     std::vector<bench::SweepResult> sweeps;

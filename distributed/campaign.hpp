@@ -17,7 +17,8 @@ class DistributedSweeps : public bench::SweepExecutor {
     /// `transport` is rank 0's (null: alone); `threads` sweeps at once per rank (0: OpenMP's
     /// default).
     DistributedSweeps(Transport* transport, int threads);
-    /// Releases the other ranks if run() never started (the campaign could not run).
+    /// Releases the other ranks if run() never started (the campaign could not run) or its
+    /// queue broke.
     ~DistributedSweeps() override;
     DistributedSweeps(const DistributedSweeps&) = delete;
     DistributedSweeps& operator=(const DistributedSweeps&) = delete;

@@ -42,7 +42,7 @@ void wait_sleeping(MPI_Request& request) {
     for (;;) {
         int done = 0;
         check(MPI_Test(&request, &done, MPI_STATUS_IGNORE), "MPI_Test");
-        if (done) return;
+        if (done != 0) return;
         std::this_thread::sleep_for(kPollInterval);
     }
 }
@@ -55,7 +55,11 @@ class MpiTransport : public Transport {
         check(MPI_Comm_size(comm_, &size_), "MPI_Comm_size");
     }
     ~MpiTransport() override {
-        while (!flush()) std::this_thread::sleep_for(kPollInterval);
+        try {
+            while (!flush()) std::this_thread::sleep_for(kPollInterval);
+        } catch (const std::exception&) {
+            // A send that failed: nothing left to deliver it to.
+        }
         MPI_Comm_free(&comm_);
     }
     [[nodiscard]] int rank() const override { return rank_; }
@@ -81,7 +85,7 @@ class MpiTransport : public Transport {
         MPI_Message handle;
         MPI_Status status;
         check(MPI_Improbe(MPI_ANY_SOURCE, kTag, comm_, &arrived, &handle, &status), "MPI_Improbe");
-        if (!arrived) return std::nullopt;
+        if (arrived == 0) return std::nullopt;
         int count = 0;
         check(MPI_Get_count(&status, MPI_CHAR, &count), "MPI_Get_count");
         Message m;
@@ -95,7 +99,7 @@ class MpiTransport : public Transport {
         for (auto it = pending_.begin(); it != pending_.end();) {
             int done = 0;
             check(MPI_Test(&it->request, &done, MPI_STATUS_IGNORE), "MPI_Test");
-            it = done ? pending_.erase(it) : std::next(it);
+            it = done != 0 ? pending_.erase(it) : std::next(it);
         }
         return pending_.empty();
     }

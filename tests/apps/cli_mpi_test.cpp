@@ -2,12 +2,12 @@
 // killed mid-run loses only its point in progress, and one rank finishes the run from the
 // checkpoints with the same files. Built and run only with SB_WITH_MPI.
 #include <gtest/gtest.h>
-#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -49,7 +49,7 @@ fs::path write_campaign(const fs::path& dir) {
     set("window_periods", "window_periods = 3");
     set("transient_periods", "transient_periods = 1");
     set("series = false", "series = true");
-    const auto file = dir / "two-sweeps.toml";
+    auto file = dir / "two-sweeps.toml";
     std::ofstream(file) << text;
     return file;
 }

@@ -170,7 +170,7 @@ TEST(DistributedCampaign, ASweepsResultTextReadsBackExactly) {
     EXPECT_EQ(back.first_mode_hz, s.first_mode_hz);
     EXPECT_EQ(back.frequencies_hz, s.frequencies_hz);
     EXPECT_EQ(back.settings, s.settings);
-    ASSERT_EQ(back.rows.size(), 2u);
+    ASSERT_EQ(back.rows.size(), 2U);
     EXPECT_EQ(back.rows[0].values[0].amplitude, s.rows[0].values[0].amplitude);
     EXPECT_EQ(back.rows[0].filling, 1);
     EXPECT_EQ(back.rows[1].series, "");

@@ -58,7 +58,7 @@ TaskQueue squares(int count, int threads) {
 
 TEST(TaskQueue, EveryTaskRunsOnceAndItsResultComesBackInTaskOrder) {
     const QueueRun run = run_over(3, squares(24, 2));
-    ASSERT_EQ(run.outcomes.size(), 24u);
+    ASSERT_EQ(run.outcomes.size(), 24U);
     std::vector<int> per_rank(3, 0);
     for (int k = 0; k < 24; ++k) {
         const TaskOutcome& o = run.outcomes[static_cast<std::size_t>(k)];
@@ -74,7 +74,7 @@ TEST(TaskQueue, EveryTaskRunsOnceAndItsResultComesBackInTaskOrder) {
 
 TEST(TaskQueue, AProcessAloneRunsEveryTaskOnItsThreads) {
     const std::vector<TaskOutcome> outcomes = distribute_tasks(nullptr, squares(5, 3));
-    ASSERT_EQ(outcomes.size(), 5u);
+    ASSERT_EQ(outcomes.size(), 5U);
     for (int k = 0; k < 5; ++k) {
         EXPECT_EQ(outcomes[static_cast<std::size_t>(k)].text,
                   "task " + std::to_string(k) + ": " + std::to_string(k * k));
@@ -117,7 +117,7 @@ TEST(TaskQueue, ATasksNoticesCallsAndResultArriveInTheOrderSent) {
     queue.task_count = 6;
     queue.threads = 2;
     queue.run = [](int task, Link& link) {
-        const std::string t = std::to_string(task);
+        std::string t = std::to_string(task);
         for (int i = 0; i < 20; ++i) link.post(t + " notice " + std::to_string(i));
         link.call(t + " call");
         link.post(t + " last");
@@ -132,7 +132,7 @@ TEST(TaskQueue, ATasksNoticesCallsAndResultArriveInTheOrderSent) {
     for (int task = 0; task < 6; ++task) {
         EXPECT_TRUE(run.outcomes[static_cast<std::size_t>(task)].ok);
         const auto& s = seen[task];
-        ASSERT_EQ(s.size(), 22u) << task;
+        ASSERT_EQ(s.size(), 22U) << task;
         for (int i = 0; i < 20; ++i)
             EXPECT_EQ(s[static_cast<std::size_t>(i)], "notice " + std::to_string(i));
         EXPECT_EQ(s[20], "call");
