@@ -140,21 +140,25 @@ double response_ratio(const identification::PointRow& row) {
 
 /// A checkpoint of this sweep's config (its hash and checksum said so) that still does not fit
 /// the sweep was edited or written by a faulty build: refused, never resumed from.
+/// `refine_budget`: how many frequencies the grid refinement may add after the planned grid
+/// (their rows are checked as the refinement adds them again, in run_sweep).
 void check_fits(const SweepCheckpoint& c, const std::string& name, const SweepTask& task,
-                CoupledSpecimen& specimen) {
+                int refine_budget, CoupledSpecimen& specimen) {
     const auto refuse = [&](const std::string& why) {
         throw CheckpointError(name, 0, "does not fit its sweep: " + why);
     };
     const auto& grid = task.frequencies_hz;
-    if (static_cast<std::size_t>(c.points_done) > grid.size()) {
+    const std::size_t most = grid.size() + static_cast<std::size_t>(std::max(0, refine_budget));
+    if (static_cast<std::size_t>(c.points_done) > most) {
         refuse(std::to_string(c.points_done) + " points done, the sweep has " +
-               std::to_string(grid.size()));
+               std::to_string(grid.size()) +
+               (refine_budget > 0 ? " and may add " + std::to_string(refine_budget) : ""));
     }
     const std::size_t channels = specimen.channel_names().size();
     for (std::size_t i = 0; i < c.rows.size(); ++i) {
         const auto& row = c.rows[i];
         // Bitwise: the checkpoint's numbers are exact hexadecimal floats of the plan's.
-        if (row.frequency_hz != grid[i] || row.level_g != task.level_g) {
+        if ((i < grid.size() && row.frequency_hz != grid[i]) || row.level_g != task.level_g) {
             refuse("row " + std::to_string(i + 1) + " is not at the sweep's level and frequency");
         }
         if (row.values.size() != channels) {
@@ -163,8 +167,8 @@ void check_fits(const SweepCheckpoint& c, const std::string& name, const SweepTa
         }
     }
     if (grid.empty()) return;
-    specimen.set_frequency(
-        grid[std::min(static_cast<std::size_t>(c.points_done), grid.size() - 1)]);
+    const auto next = static_cast<std::size_t>(c.points_done);
+    specimen.set_frequency(next < grid.size() ? grid[next] : c.rows.back().frequency_hz);
     try {
         specimen.restore(c.state);
     } catch (const std::invalid_argument& e) {
@@ -318,7 +322,8 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
     };
     if (const auto text = store.load_checkpoint(task.key)) {
         checkpoint = parse_checkpoint(*text, checkpoint_name);
-        check_fits(checkpoint, checkpoint_name, task, specimen);
+        check_fits(checkpoint, checkpoint_name, task,
+                   task.refine ? campaign.frequencies.refine_points : 0, specimen);
         out.resumed_points = checkpoint.points_done;
         progress.points_resumed(checkpoint.points_done);
     } else {
@@ -437,6 +442,15 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
             out.settings.push_back(line);
             progress.note(line);
             break;
+        }
+        // A resumed sweep holds the rows of the frequencies added before: they must be these.
+        for (std::size_t i = frequencies.size(), k = 0;
+             k < verdict.add_hz.size() && i < checkpoint.rows.size(); ++i, ++k) {
+            if (checkpoint.rows[i].frequency_hz != verdict.add_hz[k]) {
+                throw CheckpointError(checkpoint_name, 0,
+                                      "does not fit its sweep: row " + std::to_string(i + 1) +
+                                          " is not at the frequency the grid refinement adds");
+            }
         }
         frequencies.insert(frequencies.end(), verdict.add_hz.begin(), verdict.add_hz.end());
         added += static_cast<int>(verdict.add_hz.size());
