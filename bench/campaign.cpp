@@ -41,6 +41,20 @@ std::string skipped_points_line(const id::LevelIdentification& level) {
     return out.str();
 }
 
+void identify_campaign(const CampaignConfig& config,
+                       const std::function<void(const std::string&)>& progress,
+                       CampaignResult& result) {
+    id::IdentifyOptions identify;
+    identify.response_channel = "acc_" + config.campaign.control_point;
+    result.levels = id::identify_recording(result.recording, identify);
+    result.recording.damping = id::damping_rows(result.levels);
+    if (progress) {
+        for (const auto& level : result.levels) {
+            if (!level.skipped_hz.empty()) progress(skipped_points_line(level));
+        }
+    }
+}
+
 /// recording.toml's channels: the reference, then the control point, then the responses.
 id::Recording campaign_recording(const CampaignConfig& config,
                                  const std::vector<std::string>& channel_points) {
@@ -148,15 +162,7 @@ CampaignResult run_campaign(const CampaignConfig& config, const CampaignContext&
             summary.closest += row.status == "closest";
         }
     }
-    id::IdentifyOptions identify;
-    identify.response_channel = "acc_" + campaign.control_point;
-    result.levels = id::identify_recording(result.recording, identify);
-    result.recording.damping = id::damping_rows(result.levels);
-    if (context.progress) {
-        for (const auto& level : result.levels) {
-            if (!level.skipped_hz.empty()) context.progress(skipped_points_line(level));
-        }
-    }
+    identify_campaign(config, context.progress, result);
     result.sweeps = std::move(sweeps);
     result.threads = executor.threads();
     result.ranks = executor.processes();

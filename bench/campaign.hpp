@@ -81,6 +81,13 @@ struct CampaignResult {
 /// a campaign prints for a level whose flagged points the fits left out.
 std::string skipped_points_line(const identification::LevelIdentification& level);
 
+/// Identifies result.recording per arrangement, level and filling at the control point
+/// (result.levels, result.recording.damping) and reports to `progress` (when set) each level
+/// whose flagged points the fits left out: what a run and a prediction do alike.
+void identify_campaign(const CampaignConfig& config,
+                       const std::function<void(const std::string&)>& progress,
+                       CampaignResult& result);
+
 /// recording.toml's channels of a campaign of `config`: the reference ("force" or
 /// "base_acc"), then "acc_<point>" for each of `channel_points` (the control point first).
 identification::Recording campaign_recording(const CampaignConfig& config,

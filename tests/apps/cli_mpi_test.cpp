@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "campaign_files.hpp"
 #include "cli_helpers.hpp"
 
 namespace {
@@ -35,23 +36,15 @@ std::string mpirun(int ranks) {
 /// Two sweeps (two levels) of 30 real particles, three frequencies each (and those the grid
 /// refinement adds), with the steady windows' series.
 fs::path write_campaign(const fs::path& dir) {
-    std::string text = file_text(std::string(SB_SOURCE_DIR) + "/configs/paper000-h0.toml");
-    const auto set = [&text](const std::string& key, const std::string& line) {
-        const auto at = text.find("\n" + key);
-        const auto end = text.find('\n', at + 1);
-        text.replace(at + 1, end - at - 1, line);
-    };
-    set("levels_g", "levels_g = [1.5, 3.0]");
-    set("count = 7", "count = 3");
-    set("count = 120", "count = 30");
-    set("max_overlap_fraction", "max_overlap_fraction = 0.05");
-    set("max_periods", "max_periods = 14");
-    set("window_periods", "window_periods = 3");
-    set("transient_periods", "transient_periods = 1");
-    set("series = false", "series = true");
-    auto file = dir / "two-sweeps.toml";
-    std::ofstream(file) << text;
-    return file;
+    return write_edited_h0(dir, "two-sweeps.toml",
+                           {{"levels_g", "levels_g = [1.5, 3.0]"},
+                            {"count = 7", "count = 3"},
+                            {"count = 120", "count = 30"},
+                            {"max_overlap_fraction", "max_overlap_fraction = 0.05"},
+                            {"max_periods", "max_periods = 14"},
+                            {"window_periods", "window_periods = 3"},
+                            {"transient_periods", "transient_periods = 1"},
+                            {"series = false", "series = true"}});
 }
 
 /// provenance.toml without the lines that say how the run was made (date, ranks, threads,
