@@ -127,8 +127,7 @@ int run(const RunOptions& options) {
         return config::kExitBadInput;
     } catch (const FileWriteError& e) {
         // Not bad input: the same run succeeds once the disk has room or the folder is writable.
-        std::cerr << "shakerbench run: " << e.what() << "; "
-                  << kept_points(run.out_dir, e.out_of_space() ? "free space" : "make it writable")
+        std::cerr << "shakerbench run: " << e.what() << "; " << kept_points(run.out_dir, e.remedy())
                   << '\n';
         return config::kExitFailure;
     } catch (const std::filesystem::filesystem_error& e) {
