@@ -79,9 +79,12 @@ int run(const RunOptions& options) {
         return exit_code;
     }
     if (session->size() > 1 && !options.quiet) {
-        std::cerr << session->describe() << ", "
-                  << (options.threads > 0 ? options.threads : omp_get_max_threads())
-                  << " threads\n";
+        // One write per line: the ranks share mpirun's stderr, so pieces would interleave.
+        std::cerr << session->describe() + ", " +
+                         std::to_string(options.threads > 0 ? options.threads
+                                                            : omp_get_max_threads()) +
+                         " threads\n"
+                  << std::flush;
     }
     if (!root) return serve(*session, *config, options);
     // Declared after the session: it releases the other ranks when the campaign cannot start.
@@ -106,10 +109,12 @@ int run(const RunOptions& options) {
                   << summary.wall_time_s << " s\n"
                   << "recording: " << run.out_dir.string() << '\n';
         if (session->size() > 1 && !options.quiet) {
-            std::cerr << "sweeps run per rank:";
-            for (const int n : sweeps.sweeps_per_rank()) std::cerr << ' ' << n;
-            std::cerr << " (" << session->size() << " ranks x " << sweeps.threads()
-                      << " threads)\n";
+            // One write, so that another stream's lines cannot cut it in pieces.
+            std::string line = "sweeps run per rank:";
+            for (const int n : sweeps.sweeps_per_rank()) line += ' ' + std::to_string(n);
+            line += " (" + std::to_string(session->size()) + " ranks x " +
+                    std::to_string(sweeps.threads()) + " threads)\n";
+            std::cerr << line << std::flush;
         }
         return 0;
     } catch (const config::ConfigException& e) {
