@@ -9,7 +9,8 @@
 namespace sb::apps {
 
 std::optional<bench::CampaignConfig> load_config_or_report(
-    const std::string& path, const std::vector<std::string>& overrides, int& exit_code) {
+    const std::string& path, const std::vector<std::string>& overrides, int& exit_code,
+    std::ostream& errors) {
     try {
         auto config = path.empty() ? bench::load_campaign_config_text(bench::builtin_config_text(),
                                                                       bench::kBuiltinConfigName)
@@ -17,9 +18,9 @@ std::optional<bench::CampaignConfig> load_config_or_report(
         bench::apply_overrides(config, overrides, "--set");
         return config;
     } catch (const config::ConfigException& e) {
-        std::cerr << e.what() << '\n';
-        std::cerr << "shakerbench: " << e.errors().size() << " error"
-                  << (e.errors().size() == 1 ? "" : "s") << " in the config; nothing was run.\n";
+        errors << e.what() << '\n';
+        errors << "shakerbench: " << e.errors().size() << " error"
+               << (e.errors().size() == 1 ? "" : "s") << " in the config; nothing was run.\n";
         exit_code = config::kExitBadInput;
         return std::nullopt;
     }

@@ -2,6 +2,7 @@
 // the command line's --set overrides applied.
 #pragma once
 
+#include <iostream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,10 +16,11 @@ class App;
 namespace sb::apps {
 
 /// Loads `path` (empty: the built-in default) and applies `overrides` (KEY=VALUE, in order).
-/// On a bad config or override prints every error to stderr, sets exit_code to 2 and returns
+/// On a bad config or override prints every error to `errors`, sets exit_code to 2 and returns
 /// nothing.
 std::optional<bench::CampaignConfig> load_config_or_report(
-    const std::string& path, const std::vector<std::string>& overrides, int& exit_code);
+    const std::string& path, const std::vector<std::string>& overrides, int& exit_code,
+    std::ostream& errors = std::cerr);
 
 /// Adds the repeatable `--set KEY=VALUE` option to a subcommand.
 void add_set_option(CLI::App& command, std::vector<std::string>& overrides);

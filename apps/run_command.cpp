@@ -1,10 +1,14 @@
 // `shakerbench run`: runs or resumes a campaign and writes its recording directory.
 #include "run_command.hpp"
 
+#include <omp.h>
+
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <sstream>
 #include <string>
 #include <system_error>
 
@@ -13,6 +17,8 @@
 #include "config/errors.hpp"
 #include "core/text_file.hpp"
 #include "dem/solver.hpp"
+#include "distributed/campaign.hpp"
+#include "distributed/session.hpp"
 #include "identification/file_error.hpp"
 #include "load_config.hpp"
 
@@ -43,12 +49,46 @@ std::string kept_points(const std::filesystem::path& out_dir, const std::string&
            " and run again to resume";
 }
 
+/// A rank other than 0: runs the sweeps rank 0 hands out; rank 0 reports everything else.
+int serve(distributed::Session& session, const bench::CampaignConfig& config,
+          const RunOptions& options) {
+    try {
+        distributed::serve_campaign(*session.transport(), config, {}, options.threads);
+        return 0;
+    } catch (const std::exception& e) {
+        std::cerr << "shakerbench run (" << session.describe() << "): " << e.what() << '\n';
+        session.abort(config::kExitFailure);  // rank 0 would wait for this rank forever
+    }
+}
+
 int run(const RunOptions& options) {
+    std::optional<distributed::Session> session;
+    try {
+        session.emplace();
+    } catch (const std::exception& e) {
+        std::cerr << "shakerbench run: " << e.what() << '\n';
+        return config::kExitBadInput;
+    }
+    const bool root = session->rank() == 0;
     int exit_code = 0;
-    const auto config = load_config_or_report(options.config, options.overrides, exit_code);
+    // Every rank reads the config (the same file); rank 0 alone reports what is wrong with it.
+    std::ostringstream silenced;
+    const auto config = load_config_or_report(options.config, options.overrides, exit_code,
+                                              root ? std::cerr : silenced);
     if (!config) {
         return exit_code;
     }
+    if (session->size() > 1 && !options.quiet) {
+        // One write per line: the ranks share mpirun's stderr, so pieces would interleave.
+        std::cerr << session->describe() + ", " +
+                         std::to_string(options.threads > 0 ? options.threads
+                                                            : omp_get_max_threads()) +
+                         " threads\n"
+                  << std::flush;
+    }
+    if (!root) return serve(*session, *config, options);
+    // Declared after the session: it releases the other ranks when the campaign cannot start.
+    distributed::DistributedSweeps sweeps(session->transport(), options.threads);
     bench::CampaignRunOptions run;
     run.out_dir = options.out_dir.empty() ? std::filesystem::path("out") / config->name
                                           : std::filesystem::path(options.out_dir);
@@ -58,6 +98,7 @@ int run(const RunOptions& options) {
                                              : read_text_file(options.config);
     run.command_line = options.command_line;
     run.restart = options.restart;
+    run.executor = session->size() > 1 ? &sweeps : nullptr;
     try {
         const auto summary = bench::run_campaign(*config, run);
         std::cout << "campaign " << config->name << ": " << summary.points << " points ("
@@ -67,6 +108,14 @@ int run(const RunOptions& options) {
                   << " periods simulated in " << std::fixed << std::setprecision(1)
                   << summary.wall_time_s << " s\n"
                   << "recording: " << run.out_dir.string() << '\n';
+        if (session->size() > 1 && !options.quiet) {
+            // One write, so that another stream's lines cannot cut it in pieces.
+            std::string line = "sweeps run per rank:";
+            for (const int n : sweeps.sweeps_per_rank()) line += ' ' + std::to_string(n);
+            line += " (" + std::to_string(session->size()) + " ranks x " +
+                    std::to_string(sweeps.threads()) + " threads)\n";
+            std::cerr << line << std::flush;
+        }
         return 0;
     } catch (const config::ConfigException& e) {
         std::cerr << e.what()
@@ -83,8 +132,7 @@ int run(const RunOptions& options) {
         return config::kExitBadInput;
     } catch (const FileWriteError& e) {
         // Not bad input: the same run succeeds once the disk has room or the folder is writable.
-        std::cerr << "shakerbench run: " << e.what() << "; "
-                  << kept_points(run.out_dir, e.out_of_space() ? "free space" : "make it writable")
+        std::cerr << "shakerbench run: " << e.what() << "; " << kept_points(run.out_dir, e.remedy())
                   << '\n';
         return config::kExitFailure;
     } catch (const std::filesystem::filesystem_error& e) {
@@ -110,11 +158,13 @@ void register_run_command(CLI::App& app, int& exit_code) {
         "run",
         "Run the stepped-sine campaign of CONFIG (default: the built-in paper-000 H-0 "
         "campaign) into a recording directory. An interrupted run resumes from its "
-        "checkpoints when run again with the same output directory.");
+        "checkpoints when run again with the same output directory. Under mpirun (a build "
+        "with SB_WITH_MPI) the sweeps are shared among the ranks; rank 0 writes the files.");
     cmd->add_option("config", options->config, "campaign config (TOML)");
     cmd->add_option("-o,--out", options->out_dir,
                     "recording directory (default: out/<campaign name>)");
-    cmd->add_option("-j,--threads", options->threads, "sweeps run in parallel (default: all cores)")
+    cmd->add_option("-j,--threads", options->threads,
+                    "sweeps run in parallel, per rank under mpirun (default: all cores)")
         ->check(CLI::NonNegativeNumber);
     cmd->add_flag("-q,--quiet", options->quiet, "no progress lines");
     add_set_option(*cmd, options->overrides);

@@ -41,6 +41,20 @@ std::string skipped_points_line(const id::LevelIdentification& level) {
     return out.str();
 }
 
+void identify_campaign(const CampaignConfig& config,
+                       const std::function<void(const std::string&)>& progress,
+                       CampaignResult& result) {
+    id::IdentifyOptions identify;
+    identify.response_channel = "acc_" + config.campaign.control_point;
+    result.levels = id::identify_recording(result.recording, identify);
+    result.recording.damping = id::damping_rows(result.levels);
+    if (progress) {
+        for (const auto& level : result.levels) {
+            if (!level.skipped_hz.empty()) progress(skipped_points_line(level));
+        }
+    }
+}
+
 /// recording.toml's channels: the reference, then the control point, then the responses.
 id::Recording campaign_recording(const CampaignConfig& config,
                                  const std::vector<std::string>& channel_points) {
@@ -66,6 +80,50 @@ id::Recording campaign_recording(const CampaignConfig& config,
     return rec;
 }
 
+namespace {
+
+/// The sweeps on this process's OpenMP threads.
+class ThreadExecutor : public SweepExecutor {
+  public:
+    explicit ThreadExecutor(int threads)
+        : threads_(threads > 0 ? threads : omp_get_max_threads()) {}
+
+    std::vector<SweepResult> run(const CampaignConfig& config, const CampaignPlan& plan,
+                                 const std::string& config_hash, CheckpointStore& store,
+                                 SweepProgress& progress) override {
+        const std::size_t count = plan.tasks.size();
+        std::vector<SweepResult> sweeps(count);
+        std::vector<std::exception_ptr> errors(count);
+        // Sweeps are independent tasks: each owns its specimen and its checkpoint, so the
+        // numbers are the same whatever the thread count. Eigen would split large products
+        // over OpenMP threads when a sweep runs alone (one thread in the region) and not when
+        // it shares the region, changing their blocking and so their rounding: it runs
+        // single-threaded here. No exception leaves the parallel region.
+        const int eigen_threads = Eigen::nbThreads();
+        Eigen::setNbThreads(1);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads_)
+        for (std::size_t i = 0; i < count; ++i) {
+            try {
+                sweeps[i] = run_sweep(config, plan.tasks[i], config_hash, store, progress);
+            } catch (...) {
+                errors[i] = std::current_exception();
+            }
+        }
+        Eigen::setNbThreads(eigen_threads);
+        for (const auto& e : errors) {
+            if (e) std::rethrow_exception(e);
+        }
+        return sweeps;
+    }
+    [[nodiscard]] int processes() const override { return 1; }
+    [[nodiscard]] int threads() const override { return threads_; }
+
+  private:
+    int threads_;
+};
+
+}  // namespace
+
 CampaignResult run_campaign(const CampaignConfig& config, const CampaignContext& context) {
     const auto started = std::chrono::steady_clock::now();
     const CampaignSpec& campaign = config.campaign;
@@ -81,29 +139,10 @@ CampaignResult run_campaign(const CampaignConfig& config, const CampaignContext&
         context.progress("campaign " + config.name + ": " + std::to_string(plan.tasks.size()) +
                          " sweeps, " + std::to_string(plan.points()) + " points");
     }
-    const std::size_t count = plan.tasks.size();
-    std::vector<SweepResult> sweeps(count);
-    std::vector<std::exception_ptr> errors(count);
-    const int threads = context.threads > 0 ? context.threads : omp_get_max_threads();
-    // Sweeps are independent tasks: each owns its specimen and its checkpoint, so the numbers
-    // are the same whatever the thread count. Eigen would split large products over OpenMP
-    // threads when a sweep runs alone (one thread in the region) and not when it shares the
-    // region, changing their blocking and so their rounding: it runs single-threaded here. No
-    // exception leaves the parallel region.
-    const int eigen_threads = Eigen::nbThreads();
-    Eigen::setNbThreads(1);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-    for (std::size_t i = 0; i < count; ++i) {
-        try {
-            sweeps[i] = run_sweep(config, plan.tasks[i], result.config_hash, store, progress);
-        } catch (...) {
-            errors[i] = std::current_exception();
-        }
-    }
-    Eigen::setNbThreads(eigen_threads);
-    for (const auto& e : errors) {
-        if (e) std::rethrow_exception(e);
-    }
+    ThreadExecutor threaded(context.threads);
+    SweepExecutor& executor = context.executor != nullptr ? *context.executor : threaded;
+    std::vector<SweepResult> sweeps =
+        executor.run(config, plan, result.config_hash, store, progress);
 
     result.channel_points.push_back(campaign.control_point);
     for (const auto& p : campaign.response_points) {
@@ -123,17 +162,10 @@ CampaignResult run_campaign(const CampaignConfig& config, const CampaignContext&
             summary.closest += row.status == "closest";
         }
     }
-    id::IdentifyOptions identify;
-    identify.response_channel = "acc_" + campaign.control_point;
-    result.levels = id::identify_recording(result.recording, identify);
-    result.recording.damping = id::damping_rows(result.levels);
-    if (context.progress) {
-        for (const auto& level : result.levels) {
-            if (!level.skipped_hz.empty()) context.progress(skipped_points_line(level));
-        }
-    }
+    identify_campaign(config, context.progress, result);
     result.sweeps = std::move(sweeps);
-    result.threads = threads;
+    result.threads = executor.threads();
+    result.ranks = executor.processes();
     summary.wall_time_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return result;
@@ -145,6 +177,7 @@ CampaignSummary run_campaign(const CampaignConfig& config, const CampaignRunOpti
     context.threads = options.threads;
     context.store = &store;
     context.restart = options.restart;
+    context.executor = options.executor;
     if (options.progress != nullptr) {
         std::ostream* out = options.progress;
         context.progress = [out](const std::string& line) { *out << line << '\n' << std::flush; };

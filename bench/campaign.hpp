@@ -18,6 +18,24 @@
 
 namespace sb::bench {
 
+/// Runs the sweep tasks of a planned campaign, each with run_sweep against `store`, and
+/// returns their results in task order; every task runs even when one fails, and then the
+/// first failure (in task order) is thrown. run_campaign's default runs them on this process's
+/// threads; a distributed executor hands them to other processes (distributed/), each sweep
+/// reading and writing `store` and reporting to `progress` through the process that owns
+/// them. The numbers do not depend on who runs a sweep.
+class SweepExecutor {
+  public:
+    virtual ~SweepExecutor() = default;
+    virtual std::vector<SweepResult> run(const CampaignConfig& config, const CampaignPlan& plan,
+                                         const std::string& config_hash, CheckpointStore& store,
+                                         SweepProgress& progress) = 0;
+    /// Processes the sweeps run on (provenance.toml's `ranks`).
+    [[nodiscard]] virtual int processes() const = 0;
+    /// Sweeps each process runs at once (provenance.toml's `threads`).
+    [[nodiscard]] virtual int threads() const = 0;
+};
+
 /// What a campaign run needs besides its config.
 struct CampaignContext {
     int threads = 0;  ///< sweeps run in parallel; 0: OpenMP's default
@@ -29,6 +47,8 @@ struct CampaignContext {
     bool restart = false;
     /// The sweeps to run (and on which frequencies); empty: the whole config.
     Selection selection;
+    /// Who runs the sweeps; null: this process, on `threads` threads.
+    SweepExecutor* executor = nullptr;
 };
 
 struct CampaignSummary {
@@ -52,13 +72,21 @@ struct CampaignResult {
     std::vector<SweepResult> sweeps;  ///< in campaign order
     CampaignSummary summary;
     std::string config_hash;  ///< of the resolved config (bench/resolved_config.hpp)
-    int threads = 1;
+    int threads = 1;          ///< sweeps run at once per process
+    int ranks = 1;            ///< processes the sweeps ran on
     std::vector<std::string> channel_points;  ///< control point first
 };
 
 /// "H-0 2 g: 2 points with status closest left out of the fits (6.301, 6.412 Hz)": the line
 /// a campaign prints for a level whose flagged points the fits left out.
 std::string skipped_points_line(const identification::LevelIdentification& level);
+
+/// Identifies result.recording per arrangement, level and filling at the control point
+/// (result.levels, result.recording.damping) and reports to `progress` (when set) each level
+/// whose flagged points the fits left out: what a run and a prediction do alike.
+void identify_campaign(const CampaignConfig& config,
+                       const std::function<void(const std::string&)>& progress,
+                       CampaignResult& result);
 
 /// recording.toml's channels of a campaign of `config`: the reference ("force" or
 /// "base_acc"), then "acc_<point>" for each of `channel_points` (the control point first).
@@ -83,6 +111,8 @@ struct CampaignRunOptions {
     /// Discard the checkpoints and settled beds found in out_dir and start over; without it
     /// checkpoints of another config (another hash) are refused.
     bool restart = false;
+    /// Who runs the sweeps; null: this process, on `threads` threads.
+    SweepExecutor* executor = nullptr;
 };
 
 /// run_campaign with a FileCheckpointStore in options.out_dir, then write_campaign_output

@@ -39,6 +39,7 @@ void write_provenance(const CampaignConfig& config, const CampaignResult& result
     text << "[provenance]\n";
     text << "version = " << config::quoted(SB_VERSION) << '\n';
     text << "date = " << config::quoted(utc_now()) << '\n';
+    text << "ranks = " << result.ranks << '\n';
     text << "threads = " << result.threads << '\n';
     text << "config = " << config::quoted(config.source) << '\n';
     text << "config_hash = " << config::quoted(result.config_hash) << '\n';

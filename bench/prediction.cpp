@@ -378,15 +378,7 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
         result.recording.points.insert(result.recording.points.end(), sweep.rows.begin(),
                                        sweep.rows.end());
     }
-    id::IdentifyOptions identify;
-    identify.response_channel = "acc_" + campaign.control_point;
-    result.levels = id::identify_recording(result.recording, identify);
-    result.recording.damping = id::damping_rows(result.levels);
-    if (context.progress) {
-        for (const auto& level : result.levels) {
-            if (!level.skipped_hz.empty()) context.progress(skipped_points_line(level));
-        }
-    }
+    identify_campaign(config, context.progress, result);
     summary.wall_time_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return result;

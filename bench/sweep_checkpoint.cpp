@@ -21,6 +21,9 @@ constexpr std::string_view kChecksumKey = "checksum fnv1a64 ";
 constexpr long long kMaxVectorSize = 100000;
 constexpr long long kMaxCount = 100000000;
 constexpr long long kMaxPoints = 1000000;
+/// The first line of a finished sweep sent from one process to another (no checksum: the
+/// transport carries it whole).
+constexpr const char* kResultMagic = "shakerbench-sweep-result 1";
 
 class Writer {
   public:
@@ -274,6 +277,100 @@ dem::SolverState read_dem_state(Reader& r) {
     return s;
 }
 
+void write_rows(Writer& w, const std::vector<identification::PointRow>& rows) {
+    w.key("rows").integer(static_cast<long long>(rows.size())).end();
+    for (const auto& row : rows) {
+        w.key("row")
+            .num(row.level_g)
+            .num(row.frequency_hz)
+            .integer(static_cast<long long>(row.values.size()));
+        for (const auto& v : row.values) {
+            w.num(v.rms)
+                .num(v.amplitude.real())
+                .num(v.amplitude.imag())
+                .num(v.h2_ratio)
+                .num(v.h3_ratio);
+        }
+        w.text(row.arrangement).text(row.status).text(row.series.empty() ? "-" : row.series);
+        w.end();
+    }
+}
+
+/// The rows of finished points; `expected` (when not negative) is the count the header
+/// announced, checked before any row is read.
+std::vector<identification::PointRow> read_rows(Reader& r, long long expected = -1) {
+    std::vector<identification::PointRow> out;
+    const long long rows = read_count(r, "rows");
+    if (expected >= 0 && rows != expected) {
+        r.fail(std::to_string(rows) + " rows for " + std::to_string(expected) + " finished points");
+    }
+    for (long long i = 0; i < rows; ++i) {
+        auto words = r.line("row");
+        identification::PointRow row;
+        row.level_g = r.num(words);
+        row.frequency_hz = r.num(words);
+        const long long values = r.integer(words);
+        if (values < 0 || values > kMaxVectorSize) {
+            r.fail("implausible number of channels " + std::to_string(values));
+        }
+        for (long long k = 0; k < values; ++k) {
+            identification::ChannelValue v;
+            v.rms = r.num(words);
+            const double re = r.num(words);
+            const double im = r.num(words);
+            v.amplitude = {re, im};
+            v.h2_ratio = r.num(words);
+            v.h3_ratio = r.num(words);
+            row.values.push_back(v);
+        }
+        // The numbers end where the tab-separated texts begin.
+        std::string rest;
+        std::getline(words, rest);
+        std::istringstream fields(rest);
+        std::string numbers_left;
+        std::getline(fields, numbers_left, '\t');
+        if (numbers_left.find_first_not_of(' ') != std::string::npos) {
+            r.fail("more numbers than the " + std::to_string(values) + " channels announced");
+        }
+        std::string extra;
+        if (!std::getline(fields, row.arrangement, '\t') ||
+            !std::getline(fields, row.status, '\t') || !std::getline(fields, row.series, '\t') ||
+            std::getline(fields, extra, '\t')) {
+            r.fail("a row holds its arrangement, status and series, and nothing more");
+        }
+        if (row.series == "-") {
+            row.series.clear();
+        }
+        out.push_back(std::move(row));
+    }
+    return out;
+}
+
+/// "KEY n", then n lines "LINE_KEY<tab>text".
+void write_lines(Writer& w, const char* key, const char* line_key,
+                 const std::vector<std::string>& lines) {
+    w.key(key).integer(static_cast<long long>(lines.size())).end();
+    for (const auto& l : lines) {
+        w.key(line_key).text(l).end();
+    }
+}
+
+/// `expected` (when not negative): the count the header announced.
+std::vector<std::string> read_lines(Reader& r, const char* key, const char* line_key,
+                                    long long expected = -1) {
+    std::vector<std::string> out;
+    const long long count = read_count(r, key);
+    if (expected >= 0 && count != expected) {
+        r.fail(std::to_string(count) + " control log lines for " + std::to_string(expected) +
+               " finished points");
+    }
+    for (long long i = 0; i < count; ++i) {
+        r.line(line_key);
+        out.push_back(r.text());
+    }
+    return out;
+}
+
 }  // namespace
 
 std::string serialize_checkpoint(const SweepCheckpoint& c) {
@@ -299,30 +396,9 @@ std::string serialize_checkpoint(const SweepCheckpoint& c) {
                 .end();
         }
     }
-    w.key("rows").integer(static_cast<long long>(c.rows.size())).end();
-    for (const auto& row : c.rows) {
-        w.key("row")
-            .num(row.level_g)
-            .num(row.frequency_hz)
-            .integer(static_cast<long long>(row.values.size()));
-        for (const auto& v : row.values) {
-            w.num(v.rms)
-                .num(v.amplitude.real())
-                .num(v.amplitude.imag())
-                .num(v.h2_ratio)
-                .num(v.h3_ratio);
-        }
-        w.text(row.arrangement).text(row.status).text(row.series.empty() ? "-" : row.series);
-        w.end();
-    }
-    w.key("log").integer(static_cast<long long>(c.control_log.size())).end();
-    for (const auto& l : c.control_log) {
-        w.key("l").text(l).end();
-    }
-    w.key("energy").integer(static_cast<long long>(c.energy_log.size())).end();
-    for (const auto& l : c.energy_log) {
-        w.key("e").text(l).end();
-    }
+    write_rows(w, c.rows);
+    write_lines(w, "log", "l", c.control_log);
+    write_lines(w, "energy", "e", c.energy_log);
     w.key("end").end();
     return seal_checkpoint(w.str());
 }
@@ -436,70 +512,83 @@ SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& fil
         }
         c.state.attachments.push_back(std::move(a));
     }
-    const long long rows = read_count(r, "rows");
-    if (rows != c.points_done) {
-        r.fail(std::to_string(rows) + " rows for " + std::to_string(c.points_done) +
-               " finished points");
-    }
-    for (long long i = 0; i < rows; ++i) {
-        auto words = r.line("row");
-        identification::PointRow row;
-        row.level_g = r.num(words);
-        row.frequency_hz = r.num(words);
-        const long long values = r.integer(words);
-        if (values < 0 || values > kMaxVectorSize) {
-            r.fail("implausible number of channels " + std::to_string(values));
-        }
-        for (long long k = 0; k < values; ++k) {
-            identification::ChannelValue v;
-            v.rms = r.num(words);
-            const double re = r.num(words);
-            const double im = r.num(words);
-            v.amplitude = {re, im};
-            v.h2_ratio = r.num(words);
-            v.h3_ratio = r.num(words);
-            row.values.push_back(v);
-        }
-        // The numbers end where the tab-separated texts begin.
-        std::string rest;
-        std::getline(words, rest);
-        std::istringstream fields(rest);
-        std::string numbers_left;
-        std::getline(fields, numbers_left, '\t');
-        if (numbers_left.find_first_not_of(' ') != std::string::npos) {
-            r.fail("more numbers than the " + std::to_string(values) + " channels announced");
-        }
-        std::string extra;
-        if (!std::getline(fields, row.arrangement, '\t') ||
-            !std::getline(fields, row.status, '\t') || !std::getline(fields, row.series, '\t') ||
-            std::getline(fields, extra, '\t')) {
-            r.fail("a row holds its arrangement, status and series, and nothing more");
-        }
-        if (row.series == "-") {
-            row.series.clear();
-        }
-        c.rows.push_back(std::move(row));
-    }
-    const long long logs = read_count(r, "log");
-    if (logs != c.points_done) {
-        r.fail(std::to_string(logs) + " control log lines for " + std::to_string(c.points_done) +
-               " finished points");
-    }
-    for (long long i = 0; i < logs; ++i) {
-        r.line("l");
-        c.control_log.push_back(r.text());
-    }
-    const long long energy = read_count(r, "energy");
-    for (long long i = 0; i < energy; ++i) {
-        r.line("e");
-        c.energy_log.push_back(r.text());
-    }
+    c.rows = read_rows(r, c.points_done);
+    c.control_log = read_lines(r, "log", "l", c.points_done);
+    c.energy_log = read_lines(r, "energy", "e");
     {
         auto words = r.line("end");
         r.end(words);
     }
     if (!r.at_end()) r.fail("text follows 'end'");
     return c;
+}
+
+std::string serialize_sweep_result(const SweepResult& result) {
+    Writer w;
+    w.key(kResultMagic).end();
+    w.key("key").text(result.key).end();
+    w.key("arrangement").text(result.arrangement).end();
+    w.key("level_g").num(result.level_g).end();
+    w.key("first_mode_hz").num(result.first_mode_hz).end();
+    w.key("frequencies_hz").integer(static_cast<long long>(result.frequencies_hz.size()));
+    for (double f : result.frequencies_hz) w.num(f);
+    w.end();
+    write_lines(w, "settings", "s", result.settings);
+    write_rows(w, result.rows);
+    w.key("fillings");
+    for (const auto& row : result.rows) w.integer(row.filling);
+    w.end();
+    write_lines(w, "log", "l", result.control_log);
+    write_lines(w, "energy", "e", result.energy_log);
+    w.key("resumed_points").integer(result.resumed_points).end();
+    w.key("periods_simulated").integer(result.periods_simulated).end();
+    w.key("end").end();
+    return w.str();
+}
+
+SweepResult parse_sweep_result(const std::string& text, const std::string& source) {
+    Reader r(text, source);
+    SweepResult s;
+    const auto text_of = [&r](const char* key) {
+        r.line(key);
+        const auto tab = r.current().find('\t');
+        return tab == std::string::npos ? std::string() : r.current().substr(tab + 1);
+    };
+    r.line(kResultMagic);
+    s.key = text_of("key");
+    s.arrangement = text_of("arrangement");
+    {
+        auto words = r.line("level_g");
+        s.level_g = r.num(words);
+    }
+    {
+        auto words = r.line("first_mode_hz");
+        s.first_mode_hz = r.num(words);
+    }
+    {
+        auto words = r.line("frequencies_hz");
+        const long long n = r.integer(words);
+        if (n < 0 || n > 100000) r.fail("implausible size");
+        for (long long i = 0; i < n; ++i) s.frequencies_hz.push_back(r.num(words));
+    }
+    s.settings = read_lines(r, "settings", "s");
+    s.rows = read_rows(r);
+    {
+        auto words = r.line("fillings");
+        for (auto& row : s.rows) row.filling = static_cast<int>(r.integer(words));
+    }
+    s.control_log = read_lines(r, "log", "l");
+    s.energy_log = read_lines(r, "energy", "e");
+    {
+        auto words = r.line("resumed_points");
+        s.resumed_points = static_cast<int>(r.integer(words));
+    }
+    {
+        auto words = r.line("periods_simulated");
+        s.periods_simulated = r.integer(words);
+    }
+    r.line("end");
+    return s;
 }
 
 std::string checkpoint_config_hash(const std::string& text) {

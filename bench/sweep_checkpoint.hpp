@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bench/coupled_specimen.hpp"
+#include "bench/sweep_runner.hpp"
 #include "identification/recording.hpp"
 
 namespace sb::bench {
@@ -59,6 +60,14 @@ std::string seal_checkpoint(std::string_view content);
 
 /// The text without its checksum line (the whole text when its last line is none).
 std::string_view checkpoint_content(std::string_view text);
+
+/// A finished sweep's results in the same text form (every number exact): how a sweep run in
+/// another process comes back to the one that assembles the campaign.
+std::string serialize_sweep_result(const SweepResult& result);
+
+/// Reads serialize_sweep_result()'s text; damaged text throws std::runtime_error naming
+/// `source` and the line.
+SweepResult parse_sweep_result(const std::string& text, const std::string& source);
 
 /// The config hash a checkpoint's text was written with; empty when the text has none (a
 /// checkpoint of an older format, or not a checkpoint).

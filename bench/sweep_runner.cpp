@@ -230,7 +230,7 @@ void CampaignProgress::point_finished(const SweepTask& task, double frequency_hz
 
 SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
                       const std::string& config_hash, CheckpointStore& store,
-                      CampaignProgress& progress) {
+                      SweepProgress& progress) {
     const CampaignSpec& campaign = config.campaign;
     const PreparedArrangement& prepared = *task.prepared;
     const Eigen::Vector3d gravity = arrangement_gravity(prepared.arrangement);

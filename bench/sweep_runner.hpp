@@ -31,18 +31,33 @@ struct SweepResult {
     long long periods_simulated = 0;
 };
 
+/// What a sweep reports as it goes (thread-safe): the campaign's progress lines in this
+/// process, or a proxy that forwards the events to the process that prints them.
+class SweepProgress {
+  public:
+    virtual ~SweepProgress() = default;
+    /// Point `index` of the sweep (0-based; beyond the task's grid: an added frequency).
+    virtual void point_started(const SweepTask& task, int index, double frequency_hz) = 0;
+    /// `count` points were taken from the store.
+    virtual void points_resumed(int count) = 0;
+    /// A sweep refined its grid by `count` frequencies.
+    virtual void points_added(int count) = 0;
+    /// A line of its own (a sweep that could not resolve its estimates).
+    virtual void note(const std::string& line) = 0;
+    virtual void point_finished(const SweepTask& task, double frequency_hz,
+                                const control::PointResult& result) = 0;
+};
+
 /// Progress lines shared by the sweeps of a campaign (thread-safe).
-class CampaignProgress {
+class CampaignProgress : public SweepProgress {
   public:
     CampaignProgress(std::function<void(const std::string&)> sink, int points_total);
-    void point_started(const SweepTask& task, int index, double frequency_hz);
-    void points_resumed(int count);
-    /// A sweep refined its grid by `count` frequencies.
-    void points_added(int count);
-    /// A line of its own (a sweep that could not resolve its estimates).
-    void note(const std::string& line);
+    void point_started(const SweepTask& task, int index, double frequency_hz) override;
+    void points_resumed(int count) override;
+    void points_added(int count) override;
+    void note(const std::string& line) override;
     void point_finished(const SweepTask& task, double frequency_hz,
-                        const control::PointResult& result);
+                        const control::PointResult& result) override;
     [[nodiscard]] long long periods() const { return periods_.load(); }
 
   private:
@@ -62,6 +77,6 @@ class CampaignProgress {
 /// guard fires.
 SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
                       const std::string& config_hash, CheckpointStore& store,
-                      CampaignProgress& progress);
+                      SweepProgress& progress);
 
 }  // namespace sb::bench

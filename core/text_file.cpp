@@ -19,6 +19,16 @@ bool FileWriteError::out_of_space() const noexcept {
     return reason_ == std::errc::no_space_on_device || reason_.value() == EDQUOT;
 }
 
+std::string FileWriteError::remedy() const {
+    if (out_of_space()) return "free space";
+    if (reason_ == std::errc::file_too_large) return "raise the file-size limit (ulimit -f)";
+    if (reason_ == std::errc::permission_denied || reason_ == std::errc::read_only_file_system ||
+        reason_ == std::errc::operation_not_permitted) {
+        return "make it writable";
+    }
+    return "remove the cause";
+}
+
 std::string read_text_file(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);
     if (!in) {

@@ -18,6 +18,9 @@ class FileWriteError : public std::runtime_error {
     [[nodiscard]] const std::error_code& reason() const noexcept { return reason_; }
     /// No space left on the device (or over quota): freeing space is the way out.
     [[nodiscard]] bool out_of_space() const noexcept;
+    /// What to do about it, from the reason: "free space", "raise the file-size limit
+    /// (ulimit -f)", "make it writable", else "remove the cause".
+    [[nodiscard]] std::string remedy() const;
 
   private:
     std::filesystem::path file_;

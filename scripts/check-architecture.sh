@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # docs/architecture.md: the leaf modules (dem, structure, control,
-# identification) never include each other, nor config/, bench/, correlation/ or apps/;
-# config/ sees only core/; bench/ never includes correlation/; only config/ sees toml++ (its
-# sources, never its public headers), apart from identification's recording.toml reader.
-# Prints the offenders.
+# identification) never include each other, nor config/, bench/, distributed/, correlation/ or
+# apps/; config/ sees only core/; bench/ never includes distributed/ or correlation/;
+# distributed/ never includes correlation/; only config/ sees toml++ (its sources, never its
+# public headers), apart from identification's recording.toml reader; only
+# distributed/session.cpp sees MPI. Prints the offenders.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -23,12 +24,13 @@ check() {  # check FOLDER FORBIDDEN...
 leaves=(dem structure control identification)
 for leaf in "${leaves[@]}"; do
     others=()
-    for o in "${leaves[@]}" config bench correlation apps; do [[ "$o" != "$leaf" ]] && others+=("$o"); done
+    for o in "${leaves[@]}" config bench distributed correlation apps; do [[ "$o" != "$leaf" ]] && others+=("$o"); done
     check "$leaf" "${others[@]}"
 done
-check core dem structure control identification config bench correlation apps
-check config dem structure control identification bench correlation apps
-check bench correlation apps
+check core dem structure control identification config bench distributed correlation apps
+check config dem structure control identification bench distributed correlation apps
+check bench distributed correlation apps
+check distributed correlation apps
 check correlation apps
 
 # toml++: config/'s sources and its internal config/toml_tree.hpp, and identification's
@@ -44,6 +46,13 @@ hits=$(sources '#include "config/toml_tree\.hpp"' core dem structure control ide
            bench correlation apps perf tests fuzz | grep -vE '^config/[a-z_]+\.cpp:' || true)
 if [[ -n "$hits" ]]; then
     echo "architecture: config/toml_tree.hpp is internal to config/:"; echo "$hits"; status=1
+fi
+
+# MPI: distributed/session.cpp alone (a build without MPI compiles it without).
+hits=$(sources '#include [<"]mpi\.h' core dem structure control identification config bench \
+           distributed correlation apps perf tests | grep -vE '^distributed/session\.cpp:' || true)
+if [[ -n "$hits" ]]; then
+    echo "architecture: only distributed/session.cpp may include mpi.h:"; echo "$hits"; status=1
 fi
 
 [[ $status -eq 0 ]] && echo "architecture: ok"

@@ -17,7 +17,7 @@ if ((${#sources[@]} > 0)); then
     clang-format --dry-run -Werror "${sources[@]}"
 fi
 
-echo "== release build (benchmarks compiled, not run), all tests"
+echo "== release build with MPI (benchmarks compiled, not run), all tests (mpirun -np 2 included)"
 cmake --preset ci >/dev/null
 cmake --build --preset ci -j "$jobs"
 ctest --preset ci -j "$jobs"

@@ -327,6 +327,7 @@ TEST(CliFaults, AWriteFailingMidRunStopsItNamingTheFileAndARunWithRoomResumesToT
     EXPECT_EQ(WEXITSTATUS(status), 1) << output;
     EXPECT_NE(output.find("shakerbench run: " + out.string() + "/"), std::string::npos) << output;
     EXPECT_NE(output.find(": cannot be written (File too large)"), std::string::npos) << output;
+    EXPECT_NE(output.find("raise the file-size limit (ulimit -f)"), std::string::npos) << output;
     EXPECT_NE(output.find("finished points are kept in " + (out / "checkpoints").string()),
               std::string::npos)
         << output;

@@ -1,0 +1,158 @@
+// `mpirun -np 2 shakerbench run` against one process: the same files byte for byte; a rank
+// killed mid-run loses only its point in progress, and one rank finishes the run from the
+// checkpoints with the same files. Built and run only with SB_WITH_MPI.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "campaign_files.hpp"
+#include "cli_helpers.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace sb::test;
+
+/// mpirun as root in a container: allowed as root, more ranks than slots allowed, no binding
+/// (the test shares the cores with whatever else runs), shared memory without the kernel's
+/// single-copy mechanism (containers usually forbid it).
+std::string mpirun(int ranks) {
+    return "OMPI_MCA_btl_vader_single_copy_mechanism=none " + std::string(SB_MPIEXEC) +
+           " --allow-run-as-root --oversubscribe --bind-to none -np " + std::to_string(ranks) +
+           " " + SB_CLI;
+}
+
+/// Two sweeps (two levels) of 30 real particles, three frequencies each (and those the grid
+/// refinement adds), with the steady windows' series.
+fs::path write_campaign(const fs::path& dir) {
+    return write_edited_h0(dir, "two-sweeps.toml",
+                           {{"levels_g", "levels_g = [1.5, 3.0]"},
+                            {"count = 7", "count = 3"},
+                            {"count = 120", "count = 30"},
+                            {"max_overlap_fraction", "max_overlap_fraction = 0.05"},
+                            {"max_periods", "max_periods = 14"},
+                            {"window_periods", "window_periods = 3"},
+                            {"transient_periods", "transient_periods = 1"},
+                            {"series = false", "series = true"}});
+}
+
+/// provenance.toml without the lines that say how the run was made (date, ranks, threads,
+/// command).
+std::string provenance_results(const fs::path& dir) {
+    std::istringstream in(file_text(dir / "provenance.toml"));
+    std::string kept;
+    for (std::string line; std::getline(in, line);) {
+        bool how = false;
+        for (const char* key : {"date = ", "ranks = ", "threads = ", "command = "}) {
+            how = how || line.rfind(key, 0) == 0;
+        }
+        if (!how) kept += line + "\n";
+    }
+    return kept;
+}
+
+/// Every file of `expected` equals the one of `actual` with the same name, and `actual` has
+/// no other file; the provenance without how the run was made, the plot script (it names its
+/// directory) left out.
+void expect_same_files(const fs::path& expected, const fs::path& actual) {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::recursive_directory_iterator(expected)) {
+        if (!entry.is_regular_file()) continue;
+        const auto name = fs::relative(entry.path(), expected).string();
+        names.push_back(name);
+        if (name == "provenance.toml" || name == "plots/plots.gp") continue;
+        EXPECT_TRUE(file_text(entry.path()) == file_text(actual / name)) << name << " differs";
+    }
+    std::vector<std::string> others;
+    for (const auto& entry : fs::recursive_directory_iterator(actual)) {
+        if (entry.is_regular_file()) others.push_back(fs::relative(entry.path(), actual).string());
+    }
+    std::sort(names.begin(), names.end());
+    std::sort(others.begin(), others.end());
+    EXPECT_EQ(names, others);
+    EXPECT_EQ(provenance_results(expected), provenance_results(actual));
+    for (const char* name : {"points.csv", "control.csv", "damping.csv", "frf.uff",
+                             "checkpoints/H-0_1.5g.txt", "checkpoints/H-0_3g.txt"}) {
+        EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+    }
+}
+
+TEST(CliMpi, TwoRanksGiveTheFilesOfOneProcessAndAKilledRankLosesOnlyItsPointInProgress) {
+    const auto dir = temp_dir("mpi-" + std::to_string(getpid()));
+    const auto config = write_campaign(dir);
+    const auto one = dir / "one-process";
+    const auto r = run("run " + config.string() + " --out " + one.string() + " -j 1 -q");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+
+    // mpirun -np 2: each rank one sweep, rank 0 writes the files.
+    const auto two = dir / "two-ranks";
+    const auto m = run_command(mpirun(2) + " run " + config.string() + " --out " + two.string() +
+                               " -j 1 2>&1");
+    ASSERT_EQ(m.exit_code, 0) << m.output;
+    EXPECT_NE(m.output.find("rank 1 of 2: pid"), std::string::npos) << m.output;
+    EXPECT_NE(m.output.find("sweeps run per rank: 1 1 (2 ranks x 1 threads)"), std::string::npos)
+        << m.output;
+    expect_same_files(one, two);
+    EXPECT_NE(file_text(two / "provenance.toml").find("ranks = 2\nthreads = 1\n"),
+              std::string::npos);
+
+    // Again, and kill rank 1 once both sweeps have checkpointed a point: mpirun ends the run.
+    const auto killed = dir / "killed";
+    const auto log = dir / "killed.log";
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        const std::string command = mpirun(2) + " run " + config.string() + " --out " +
+                                    killed.string() + " -j 1 >" + log.string() + " 2>&1";
+        execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+        _exit(127);
+    }
+    const std::regex rank1("rank 1 of 2: pid ([0-9]+)");
+    pid_t rank1_pid = 0;
+    bool killed_mid_run = false;
+    for (int i = 0; i < 60000 && !killed_mid_run; ++i) {
+        std::smatch match;
+        const std::string output = file_text(log);
+        if (rank1_pid == 0 && std::regex_search(output, match, rank1)) {
+            rank1_pid = static_cast<pid_t>(std::stol(match[1]));
+        }
+        const bool both =
+            file_text(killed / "checkpoints" / "H-0_1.5g.txt").find("points_done 1\n") !=
+                std::string::npos &&
+            file_text(killed / "checkpoints" / "H-0_3g.txt").find("points_done 1\n") !=
+                std::string::npos;
+        if (rank1_pid != 0 && both) {
+            kill(rank1_pid, SIGKILL);
+            killed_mid_run = true;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    int status = 0;
+    waitpid(child, &status, 0);
+    ASSERT_TRUE(killed_mid_run) << file_text(log);
+    EXPECT_FALSE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << file_text(log);
+    ASSERT_FALSE(fs::exists(killed / "points.csv")) << "killed too late";
+
+    // One rank finishes the run from the checkpoints: the same files.
+    const auto resumed = run_command(mpirun(1) + " run " + config.string() + " --out " +
+                                     killed.string() + " -j 1 2>&1");
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+    const std::regex taken("([0-9]+) taken from checkpoints");
+    std::smatch match;
+    ASSERT_TRUE(std::regex_search(resumed.output, match, taken)) << resumed.output;
+    EXPECT_GE(std::stoi(match[1]), 2) << resumed.output;
+    expect_same_files(one, killed);
+}
+
+}  // namespace
