@@ -40,10 +40,10 @@ int run(const CalibrateArgs& args) {
     stated.frequency_relative = args.frequency_uncertainty;
     stated.frf_relative = args.frf_uncertainty;
     try {
-        const auto measurement = correlation::read_measurement(args.measured, stated);
         const auto free = args.free.empty()
                               ? correlation::default_free_parameters(*config)
                               : correlation::parse_free_parameters(*config, args.free);
+        const auto measurement = correlation::read_measurement(args.measured, stated);
         const std::filesystem::path out_dir =
             args.out_dir.empty() ? std::filesystem::path("out") / (config->name + "-calibrated")
                                  : std::filesystem::path(args.out_dir);

@@ -2,8 +2,8 @@
 // and the measured and simulated damping curves on one plot.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
+#include <iomanip>
 #include <sstream>
 
 #include "bench/resolved_config.hpp"
@@ -15,11 +15,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string num(double v, const char* format = "%.6g") {
+/// `v` with `digits` significant digits (general) or decimals (fixed); "nan" if not finite.
+std::string num(double v, int digits = 6, bool fixed = false) {
     if (!std::isfinite(v)) return "nan";
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, format, v);
-    return buffer;
+    std::ostringstream out;
+    if (fixed) out << std::fixed;
+    out << std::setprecision(digits) << v;
+    return out.str();
 }
 
 std::string toml_string(const std::string& s) {
@@ -36,7 +38,7 @@ std::string toml_string(const std::string& s) {
 }
 
 std::string level_name(const std::string& arrangement, double level_g) {
-    return arrangement + " " + num(level_g, "%g") + " g";
+    return arrangement + " " + num(level_g) + " g";
 }
 
 const identification::DampingRow* row_at(const std::vector<identification::DampingRow>& rows,
@@ -63,7 +65,7 @@ std::string calibration_toml(const CalibrationResult& r, const Measurement& m,
         << "evaluations = " << r.outcome.evaluations << '\n'
         << "simulations = " << r.simulations << '\n'
         << "stopped = " << toml_string(r.outcome.stopped) << '\n'
-        << "wall_time_s = " << num(r.wall_time_s, "%.1f") << '\n'
+        << "wall_time_s = " << num(r.wall_time_s, 1, true) << '\n'
         << "misfit_start = " << num(r.start.misfit) << '\n'
         << "misfit_calibrated = " << num(r.best.misfit) << '\n'
         << "features = " << m.features.size() << '\n'
@@ -74,30 +76,29 @@ std::string calibration_toml(const CalibrationResult& r, const Measurement& m,
         out << "\n[[parameters]]\n"
             << "key = " << toml_string(p.path) << '\n'
             << "meaning = " << toml_string(p.meaning) << '\n'
-            << "search_interval = [" << num(p.lo, "%.17g") << ", " << num(p.hi, "%.17g") << "]\n"
-            << "start = " << num(p.start, "%.17g") << '\n';
+            << "search_interval = [" << num(p.lo, 17) << ", " << num(p.hi, 17) << "]\n"
+            << "start = " << num(p.start, 17) << '\n';
         if (j < r.findings.size()) {
             const auto& f = r.findings[j];
             out << "identifiable = " << (f.identifiable ? "true" : "false") << '\n';
             // A parameter the data cannot identify gets no value: the interval says what the
             // data allow.
-            if (f.identifiable) out << "value = " << num(f.value, "%.17g") << '\n';
-            out << "interval_95 = [" << num(f.lo95, "%.17g") << ", " << num(f.hi95, "%.17g")
-                << "]\n"
+            if (f.identifiable) out << "value = " << num(f.value, 17) << '\n';
+            out << "interval_95 = [" << num(f.lo95, 17) << ", " << num(f.hi95, 17) << "]\n"
                 << "finding = " << toml_string(f.reason) << '\n'
                 << "information_share = [";
             for (std::size_t s = 0; s < f.information_share.size(); ++s) {
-                out << (s ? ", " : "") << num(f.information_share[s], "%.4f");
+                out << (s ? ", " : "") << num(f.information_share[s], 4, true);
             }
             out << "]  # per level, in the order of [[levels]]\n";
         } else {
-            out << "value = " << num(r.best.values[j], "%.17g") << '\n';
+            out << "value = " << num(r.best.values[j], 17) << '\n';
         }
     }
     for (const auto& l : r.levels) {
         out << "\n[[levels]]\n"
             << "arrangement = " << toml_string(l.arrangement) << '\n'
-            << "level_g = " << num(l.level_g, "%.17g") << '\n'
+            << "level_g = " << num(l.level_g, 17) << '\n'
             << "features = " << l.features << '\n'
             << "misfit_start = " << num(l.misfit_start) << '\n'
             << "misfit_calibrated = " << num(l.misfit_best) << '\n';
@@ -116,22 +117,22 @@ std::string report_md(const CalibrationResult& r, const Measurement& m,
         << "Search: " << search_mode_name(r.search.mode) << ", " << r.outcome.evaluations
         << " evaluations of a budget of " << r.search.budget << ", " << r.simulations
         << " simulated (the others from the cache); ended by " << r.outcome.stopped << "; "
-        << num(r.wall_time_s, "%.1f") << " s.\n\n"
+        << num(r.wall_time_s, 1, true) << " s.\n\n"
         << "Misfit (½ χ², the residuals in standard deviations of the measurement and the "
            "simulation's seed scatter): "
-        << num(r.start.misfit, "%.4g") << " at the config's values, " << num(r.best.misfit, "%.4g")
+        << num(r.start.misfit, 4) << " at the config's values, " << num(r.best.misfit, 4)
         << " calibrated.\n\n## Parameters\n\n"
         << "| key | start | calibrated | 95 % interval | identifiable |\n|---|---|---|---|---|\n";
     for (std::size_t j = 0; j < r.free.size(); ++j) {
         const auto& p = r.free[j];
-        out << "| `" << p.path << "` | " << num(p.start, "%.4g") << " | ";
+        out << "| `" << p.path << "` | " << num(p.start, 4) << " | ";
         if (j < r.findings.size()) {
             const auto& f = r.findings[j];
-            out << (f.identifiable ? num(f.value, "%.4g") : std::string("not identifiable"))
-                << " | [" << num(f.lo95, "%.4g") << ", " << num(f.hi95, "%.4g") << "] | "
+            out << (f.identifiable ? num(f.value, 4) : std::string("not identifiable")) << " | ["
+                << num(f.lo95, 4) << ", " << num(f.hi95, 4) << "] | "
                 << (f.identifiable ? "yes" : "no") << " |\n";
         } else {
-            out << num(r.best.values[j], "%.4g") << " | — | not assessed |\n";
+            out << num(r.best.values[j], 4) << " | — | not assessed |\n";
         }
     }
     out << '\n';
@@ -151,7 +152,7 @@ std::string report_md(const CalibrationResult& r, const Measurement& m,
                 << level_name(m.selection.sweeps[s].arrangement, m.selection.sweeps[s].level_g)
                 << " |";
             for (const auto& f : r.findings) {
-                out << ' ' << num(100.0 * f.information_share[s], "%.0f") << " % |";
+                out << ' ' << num(100.0 * f.information_share[s], 0, true) << " % |";
             }
             out << '\n';
         }
@@ -164,11 +165,11 @@ std::string report_md(const CalibrationResult& r, const Measurement& m,
         const auto* sr = row_at(r.start.simulated.damping, l.arrangement, l.level_g);
         const auto* br = row_at(r.best.simulated.damping, l.arrangement, l.level_g);
         const auto pct = [](const identification::DampingRow* row) {
-            return row ? num(100.0 * row->damping_ratio, "%.3f") + " %" : std::string("—");
+            return row ? num(100.0 * row->damping_ratio, 3, true) + " %" : std::string("—");
         };
         out << "| " << level_name(l.arrangement, l.level_g) << " | " << l.features << " | "
-            << num(l.misfit_start, "%.3g") << " | " << num(l.misfit_best, "%.3g") << " | "
-            << pct(mr) << " | " << pct(sr) << " | " << pct(br) << " |\n";
+            << num(l.misfit_start, 3) << " | " << num(l.misfit_best, 3) << " | " << pct(mr) << " | "
+            << pct(sr) << " | " << pct(br) << " |\n";
     }
     out << "\nPlot: `calibration-damping.svg` (measured and simulated damping against level). "
            "Every evaluation: `evaluations.csv`. The calibrated config: `calibrated.toml`.\n";
@@ -183,12 +184,12 @@ std::string evaluations_csv(const CalibrationResult& r) {
     for (std::size_t i = 0; i < r.history.size(); ++i) {
         const auto& e = r.history[i];
         out << i + 1;
-        for (double v : e.values) out << ',' << num(v, "%.17g");
+        for (double v : e.values) out << ',' << num(v, 17);
         std::string error = e.error;
         std::replace(error.begin(), error.end(), ',', ';');
         std::replace(error.begin(), error.end(), '\n', ' ');
-        out << ',' << num(e.misfit, "%.10g") << ',' << (e.from_cache ? 1 : 0) << ','
-            << num(e.wall_time_s, "%.3f") << ',' << error << '\n';
+        out << ',' << num(e.misfit, 10) << ',' << (e.from_cache ? 1 : 0) << ','
+            << num(e.wall_time_s, 3, true) << ',' << error << '\n';
     }
     return out.str();
 }

@@ -27,6 +27,7 @@ FeatureEmulator::FeatureEmulator(const Measurement& measurement,
     const auto n = static_cast<Eigen::Index>(good.size());
     if (n < 3) throw std::invalid_argument("the emulator needs at least 3 successful evaluations");
     trained_on_ = static_cast<int>(n);
+    for (const auto* e : good) fillings_ = std::max(fillings_, e->simulated.fillings);
     const auto d = static_cast<Eigen::Index>(free.size());
     Eigen::MatrixXd x(n, d);
     for (Eigen::Index i = 0; i < n; ++i) {
@@ -70,7 +71,19 @@ FeatureEmulator::FeatureEmulator(const Measurement& measurement,
             constant_[k] = yk.mean();
             continue;
         }
-        processes_[k] = std::make_unique<GaussianProcess>(GaussianProcess::fit(xk, yk));
+        GpFitOptions fit;
+        fit.restarts = 8;  // more starts: a length scale stuck short invents a dependence
+        // The nugget is at least the simulation's own scatter, known from its fillings: a DEM
+        // campaign's features jitter with the seed, and an emulator that interpolated the
+        // jitter would carve false narrow valleys into the misfit.
+        double scatter2 = 0.0;
+        for (const auto r : rows) scatter2 += std::pow(good[r]->simulated.sigma[k], 2);
+        scatter2 /= static_cast<double>(rows.size());
+        const double centred =
+            (yk.array() - yk.mean()).square().sum() / static_cast<double>(yk.size() - 1);
+        fit.min_noise_variance = std::clamp(scatter2 / centred, fit.min_noise_variance,
+                                            0.5 * GaussianProcess::kMaxNoiseVariance);
+        processes_[k] = std::make_unique<GaussianProcess>(GaussianProcess::fit(xk, yk, fit));
     }
     std::mt19937_64 generator(20261202);
     std::normal_distribution<double> normal(0.0, 1.0);
@@ -104,7 +117,7 @@ std::vector<double> FeatureEmulator::residuals(const std::vector<double>& u) con
     predict(u, mean, variance);
     std::vector<double> r(mean.size());
     for (std::size_t k = 0; k < mean.size(); ++k) {
-        r[k] = residual(measurement_->features[k], mean[k], simulated_sigma_[k]);
+        r[k] = residual(measurement_->features[k], mean[k], simulated_sigma_[k], fillings_);
     }
     return r;
 }
@@ -125,8 +138,8 @@ double FeatureEmulator::expected_improvement(const std::vector<double>& u, doubl
     for (const auto& draw : draws_) {
         double m = 0.0;
         for (std::size_t k = 0; k < mean.size(); ++k) {
-            const double r =
-                residual(measurement_->features[k], mean[k] + sd[k] * draw[k], simulated_sigma_[k]);
+            const double r = residual(measurement_->features[k], mean[k] + sd[k] * draw[k],
+                                      simulated_sigma_[k], fillings_);
             m += 0.5 * r * r;
         }
         sum += std::max(0.0, best - m);

@@ -39,6 +39,7 @@ class FeatureEmulator {
     std::vector<double> simulated_sigma_;  ///< mean over evaluations of the simulation's scatter
     std::vector<std::vector<double>> draws_;
     int trained_on_ = 0;
+    int fillings_ = 1;  ///< fillings each simulated value averages
 };
 
 }  // namespace sb::correlation

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <iomanip>
 #include <sstream>
 #include <thread>
 
@@ -16,7 +17,7 @@
 namespace sb::correlation {
 namespace {
 
-constexpr const char* kCacheMagic = "shakerbench-evaluation 1";
+constexpr const char* kCacheMagic = "shakerbench-evaluation 2";
 
 std::string number_text(double v) {
     if (!std::isfinite(v)) return "nan";
@@ -89,8 +90,8 @@ void Evaluator::compare(Evaluation& e) const {
         return;
     }
     for (std::size_t i = 0; i < measurement_.features.size(); ++i) {
-        e.residuals[i] =
-            residual(measurement_.features[i], e.simulated.value[i], e.simulated.sigma[i]);
+        e.residuals[i] = residual(measurement_.features[i], e.simulated.value[i],
+                                  e.simulated.sigma[i], e.simulated.fillings);
         e.misfit += 0.5 * e.residuals[i] * e.residuals[i];
     }
 }
@@ -147,18 +148,39 @@ std::vector<Evaluation> Evaluator::evaluate(const std::vector<std::vector<double
         history_.push_back(e);
         if (options_.progress) {
             std::ostringstream line;
-            line << "evaluation " << history_.size() << ":";
+            line << "evaluation " << history_.size();
+            if (options_.expected_evaluations > 0) line << " of ~" << options_.expected_evaluations;
+            line << ":";
+            line << std::setprecision(6);
             for (std::size_t i = 0; i < free_.size(); ++i) {
-                line << ' ' << free_[i].path << '=' << number_text(e.values[i]);
+                line << ' ' << free_[i].path << '=' << e.values[i];
             }
             if (e.error.empty()) {
-                line << "  misfit " << e.misfit;
+                line << "  misfit " << std::setprecision(4) << e.misfit;
             } else {
                 line << "  failed: " << e.error;
             }
-            line << (e.from_cache
-                         ? "  (cached)"
-                         : "  (" + number_text(std::round(e.wall_time_s * 10) / 10) + " s)");
+            double best = kFailedMisfit;
+            double simulated_time = 0.0;
+            for (const auto& h : history_) {
+                best = std::min(best, h.misfit);
+                if (!h.from_cache) simulated_time += h.wall_time_s;
+            }
+            line << ", best " << best;
+            if (e.from_cache) {
+                line << "  (cached)";
+            } else {
+                line << "  (" << std::fixed << std::setprecision(1) << e.wall_time_s << " s)";
+            }
+            const auto done = static_cast<int>(history_.size());
+            if (options_.expected_evaluations > done && simulations_ > 0) {
+                // Batches run side by side, so the ETA from the mean simulation time is an
+                // upper bound.
+                const double eta = (options_.expected_evaluations - done) * simulated_time /
+                                   static_cast<double>(simulations_);
+                line << ", ETA " << std::setprecision(0) << eta << " s for "
+                     << options_.expected_evaluations - done << " more";
+            }
             options_.progress(line.str());
         }
     }
@@ -203,6 +225,8 @@ bool Evaluator::load(const std::string& key, Evaluation& e) const {
                 wall = parse_double(parts[1]);
             } else if (parts[0] == "points_flagged" && parts.size() == 2) {
                 s.points_flagged = std::stoi(parts[1]);
+            } else if (parts[0] == "fillings" && parts.size() == 2) {
+                s.fillings = std::stoi(parts[1]);
             } else if (parts[0] == "feature" && parts.size() == 3) {
                 s.value.push_back(parse_double(parts[1]));
                 s.sigma.push_back(parse_double(parts[2]));
@@ -247,6 +271,7 @@ void Evaluator::store(const Evaluation& e) const {
     if (!error.empty()) out << "error\t" << error << '\n';
     out << "wall_time_s\t" << number_text(e.wall_time_s) << '\n';
     out << "points_flagged\t" << e.simulated.points_flagged << '\n';
+    out << "fillings\t" << e.simulated.fillings << '\n';
     for (std::size_t i = 0; i < e.simulated.value.size(); ++i) {
         out << "feature\t" << number_text(e.simulated.value[i]) << '\t'
             << number_text(e.simulated.sigma[i]) << '\n';

@@ -37,8 +37,10 @@ struct EvaluatorOptions {
     int threads = 0;  ///< shared by the evaluations of a batch; 0: the hardware's
     /// Where each evaluation's features are kept (one small file per key); empty: memory only.
     std::filesystem::path cache_dir;
-    /// Receives one line per evaluation (values, misfit, time); empty: none.
+    /// Receives one line per evaluation (values, misfit, best so far, time, ETA); empty: none.
     std::function<void(const std::string&)> progress;
+    /// Evaluations expected in all, for the progress lines' ETA; 0: no ETA.
+    int expected_evaluations = 0;
     /// Simulates a config on a measurement's selection: the coupled campaign by default
     /// (bench::run_campaign with no store); a test or the two-fidelity mode may give the
     /// describing-function prediction instead.

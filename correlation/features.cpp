@@ -171,7 +171,13 @@ Measurement read_measurement(const fs::path& directory, const StatedUncertainty&
         }
         m.selection.sweeps.push_back(sweep);
 
-        if (const DampingRow* row = find_row(m.damping, arrangement, level_g, m.damping_method)) {
+        // Where the level has FRF points, its frequency and damping are functions of those
+        // points: compared as well, the same data would count twice and every interval come
+        // out too narrow. They stand for the level only when it has no points.
+        const bool has_points = !sweep.frequencies_hz.empty();
+        const DampingRow* row =
+            has_points ? nullptr : find_row(m.damping, arrangement, level_g, m.damping_method);
+        if (row) {
             const double n = std::max(1, row->fillings);
             const bool repeats = row->fillings > 1;
             Feature fn{arrangement,
@@ -187,9 +193,12 @@ Measurement read_measurement(const fs::path& directory, const StatedUncertainty&
                          0.0,         repeats};
             zeta.sigma = repeats ? row->damping_ratio_std / std::sqrt(n)
                                  : stated.damping_relative * row->damping_ratio;
-            // A scatter of zero from few repeats is no uncertainty: keep the stated floor.
-            fn.sigma = std::max(fn.sigma, 0.1 * stated.frequency_relative * fn.value);
-            zeta.sigma = std::max(zeta.sigma, 0.1 * stated.damping_relative * zeta.value);
+            // The stated uncertainty is a floor: the scatter of a few repeats is itself
+            // uncertain (two fillings give it one degree of freedom) and knows nothing of the
+            // errors the repeats share (calibration of the sensors, the fixture).
+            fn.sigma = std::max(fn.sigma, stated.frequency_relative * fn.value);
+            zeta.sigma = std::max(zeta.sigma, stated.damping_relative * zeta.value);
+            fn.repeats = zeta.repeats = std::max(1, row->fillings);
             m.features.push_back(fn);
             m.features.push_back(zeta);
         }
@@ -203,10 +212,9 @@ Measurement read_measurement(const fs::path& directory, const StatedUncertainty&
                 0.0,         repeats};
             Feature phase{arrangement, level_g, FeatureKind::phase, f, std::arg(p.mean),
                           0.0,         repeats};
-            mag.sigma = std::max(repeats ? p.log_magnitude_std / root_n : stated.frf_relative,
-                                 0.1 * stated.frf_relative);
-            phase.sigma = std::max(repeats ? p.phase_std / root_n : stated.frf_relative,
-                                   0.1 * stated.frf_relative);
+            mag.sigma = std::max(repeats ? p.log_magnitude_std / root_n : 0.0, stated.frf_relative);
+            phase.sigma = std::max(repeats ? p.phase_std / root_n : 0.0, stated.frf_relative);
+            mag.repeats = phase.repeats = p.fillings;
             m.features.push_back(mag);
             m.features.push_back(phase);
         }
@@ -239,6 +247,7 @@ SimulatedFeatures simulated_features(const bench::CampaignResult& result,
     }
     for (const auto& p : result.recording.points) {
         s.points_flagged += identification::left_out_of_fits_by_default(p.status) ? 1 : 0;
+        s.fillings = std::max(s.fillings, p.filling + 1);
     }
     const double nan = std::numeric_limits<double>::quiet_NaN();
     for (const auto& f : measurement.features) {
@@ -268,15 +277,17 @@ SimulatedFeatures simulated_features(const bench::CampaignResult& result,
     return s;
 }
 
-double residual(const Feature& feature, double simulated, double simulated_sigma) {
+double residual(const Feature& feature, double simulated, double simulated_sigma,
+                int simulated_fillings) {
     if (!std::isfinite(simulated)) return kMissingResidual;
     double difference = simulated - feature.value;
     if (feature.kind == FeatureKind::phase) {
         difference = std::remainder(difference, 2.0 * std::numbers::pi);
     }
-    const double sigma =
-        std::sqrt(feature.sigma * feature.sigma + simulated_sigma * simulated_sigma);
-    return difference / sigma;
+    const double seed2 = simulated_sigma * simulated_sigma * std::max(1, simulated_fillings);
+    const double measured2 =
+        std::max(feature.sigma * feature.sigma, seed2 / std::max(1, feature.repeats));
+    return difference / std::sqrt(measured2 + simulated_sigma * simulated_sigma);
 }
 
 }  // namespace sb::correlation

@@ -28,9 +28,12 @@ struct Feature {
     double frequency_hz = 0.0;  ///< the FRF's frequency (log_magnitude, phase); else 0
     double value = 0.0;         ///< measured
     /// Standard uncertainty of the measured value: the scatter of repeats (fillings, repeated
-    /// points) over the square root of their number, else the stated uncertainty.
+    /// points) over the square root of their number where that is larger than the stated
+    /// uncertainty, else the stated uncertainty.
     double sigma = 0.0;
     bool sigma_from_repeats = false;
+    /// How many repeats (fillings of the bed, repeated points) the value averages [-].
+    int repeats = 1;  ///< there were repeats (their scatter may be below the floor)
 
     /// "H-0 0.5 g damping", "H-0 0.5 g |H| at 6.70 Hz".
     [[nodiscard]] std::string label() const;
@@ -75,6 +78,7 @@ struct SimulatedFeatures {
     std::vector<double> sigma;
     std::vector<identification::DampingRow> damping;  ///< the simulated damping curve
     int points_flagged = 0;  ///< points left out of the fits (closest, uncertain ...)
+    int fillings = 1;        ///< fillings of the bed each value averages [-]
 };
 
 /// The features of `measurement` taken from a campaign's result (identified as the
@@ -82,10 +86,14 @@ struct SimulatedFeatures {
 SimulatedFeatures simulated_features(const bench::CampaignResult& result,
                                      const Measurement& measurement);
 
-/// Residual of one feature in standard deviations: (simulated − measured) / sqrt(σm² + σs²),
-/// the phase difference wrapped into (−π, π]. A missing simulated value counts
+/// Residual of one feature in standard deviations: (simulated − measured) / σ, the phase
+/// difference wrapped into (−π, π]. σ² = σm² + σs², σs the simulation's scatter of its mean over
+/// `simulated_fillings` fillings; σm the measured uncertainty, at least the scatter the bed's
+/// own chaos gives a mean over the measurement's repeats (σs² simulated_fillings / repeats):
+/// a measured damper is one more filling of the same physics. A missing simulated value counts
 /// kMissingResidual.
-double residual(const Feature& feature, double simulated, double simulated_sigma);
+double residual(const Feature& feature, double simulated, double simulated_sigma,
+                int simulated_fillings);
 inline constexpr double kMissingResidual = 10.0;
 
 }  // namespace sb::correlation

@@ -24,7 +24,7 @@ std::optional<double> parse_number(std::string_view text) {
 
 std::optional<double> number_of(const config::Value& value) {
     if (const auto* d = std::get_if<double>(&value)) return *d;
-    if (const auto* i = std::get_if<long long>(&value)) return static_cast<double>(*i);
+    if (const auto* i = std::get_if<long>(&value)) return static_cast<double>(*i);
     return std::nullopt;
 }
 

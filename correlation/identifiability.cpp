@@ -4,14 +4,15 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <nlopt.hpp>
+#include <utility>
 
 #include "correlation/space_filling.hpp"
 
 namespace sb::correlation {
 namespace {
 
-constexpr int kProfilePoints = 41;
-constexpr int kInnerCandidates = 96;
+constexpr int kInnerCandidates = 32;
 constexpr double kStep = 0.02;  ///< central difference of the emulator mean, unit cube
 
 std::string text(double v) {
@@ -30,6 +31,72 @@ std::size_t level_of(const Measurement& m, const Feature& f) {
     }
     return 0;
 }
+
+/// The profile misfit at u_j = t: the least emulated misfit over the other coordinates.
+struct ProfileSearch {
+    const FeatureEmulator* emulator;
+    int j;
+    int d;
+    const std::vector<std::vector<double>>& inner;
+
+    [[nodiscard]] std::vector<double> point(double t, const std::vector<double>& others) const {
+        std::vector<double> u(static_cast<std::size_t>(d));
+        for (int i = 0, k = 0; i < d; ++i) u[i] = i == j ? t : others[k++];
+        return u;
+    }
+
+    /// `warm` (the others' coordinates) is where the local search starts and is left at the
+    /// minimum found; the best point's others and a space-filling set are tried as starts.
+    double at(double t, std::vector<double>& warm, const std::vector<double>& at_best) const {
+        if (d == 1) return emulator->misfit({t});
+        std::vector<double> start = warm;
+        double least = emulator->misfit(point(t, warm));
+        for (const auto* candidate : {&at_best}) {
+            const double m = emulator->misfit(point(t, *candidate));
+            if (m < least) {
+                least = m;
+                start = *candidate;
+            }
+        }
+        for (const auto& z : inner) {
+            const double m = emulator->misfit(point(t, z));
+            if (m < least) {
+                least = m;
+                start = z;
+            }
+        }
+        struct Data {
+            const ProfileSearch* search;
+            double t;
+        } data{this, t};
+        nlopt::opt opt(d - 1 >= 2 ? nlopt::LN_BOBYQA : nlopt::LN_COBYLA,
+                       static_cast<unsigned>(d - 1));
+        opt.set_lower_bounds(std::vector<double>(static_cast<std::size_t>(d - 1), 0.0));
+        opt.set_upper_bounds(std::vector<double>(static_cast<std::size_t>(d - 1), 1.0));
+        opt.set_min_objective(
+            [](const std::vector<double>& others, std::vector<double>& /*gradient*/, void* p) {
+                const auto* dd = static_cast<const Data*>(p);
+                return dd->search->emulator->misfit(dd->search->point(dd->t, others));
+            },
+            &data);
+        opt.set_maxeval(300);
+        opt.set_xtol_abs(1e-6);
+        opt.set_initial_step(0.01);
+        std::vector<double> x = start;
+        double value = least;
+        try {
+            opt.optimize(x, value);
+        } catch (const std::exception&) {
+            // keep the best start
+        }
+        if (value < least) {
+            least = value;
+            start = x;
+        }
+        warm = start;
+        return least;
+    }
+};
 
 }  // namespace
 
@@ -62,30 +129,54 @@ std::vector<ParameterFinding> assess_identifiability(const FeatureEmulator& emul
         ParameterFinding f;
         f.parameter = free[j];
         f.value = best_values[j];
-        // Profile: for each value of u_j the least misfit over the others, searched on a
-        // space-filling set and at the best point's other coordinates.
-        for (int p = 0; p < kProfilePoints; ++p) {
-            const double uj = static_cast<double>(p) / (kProfilePoints - 1);
-            auto u = best_u;
-            u[j] = uj;
-            double least = emulator.misfit(u);
-            for (const auto& z : inner) {
-                std::vector<double> v(d);
-                for (int i = 0, k = 0; i < d; ++i) v[i] = i == j ? uj : z[k++];
-                least = std::min(least, emulator.misfit(v));
-            }
-            f.profile.values.push_back(free[j].lo + uj * (free[j].hi - free[j].lo));
-            f.profile.misfit.push_back(least);
+        // Profile: from the best value outwards in steps that double, each value's least
+        // misfit over the others (a local search warm-started from the previous value's),
+        // until the misfit rises kProfileThreshold above its minimum; the crossing is then
+        // bisected. A well-identified value has a valley far narrower than any fixed grid.
+        ProfileSearch search{&emulator, j, d, inner};
+        std::vector<double> others_at_best;
+        for (int i = 0; i < d; ++i) {
+            if (i != j) others_at_best.push_back(best_u[i]);
         }
-        const double minimum = *std::min_element(f.profile.misfit.begin(), f.profile.misfit.end());
-        f.lo95 = std::numeric_limits<double>::infinity();
-        f.hi95 = -std::numeric_limits<double>::infinity();
-        for (int p = 0; p < kProfilePoints; ++p) {
-            if (f.profile.misfit[p] - minimum <= kProfileThreshold) {
-                f.lo95 = std::min(f.lo95, f.profile.values[p]);
-                f.hi95 = std::max(f.hi95, f.profile.values[p]);
+        auto warm = others_at_best;
+        double minimum = search.at(best_u[j], warm, others_at_best);
+        std::vector<std::pair<double, double>> points{{best_u[j], minimum}};
+        double ends[2] = {0.0, 1.0};
+        for (int side = 0; side < 2; ++side) {
+            const double sign = side == 0 ? -1.0 : 1.0;
+            double inside = best_u[j];
+            warm = others_at_best;
+            double step = 1e-4;
+            ends[side] = side == 0 ? 0.0 : 1.0;
+            while (true) {
+                const double t = std::clamp(best_u[j] + sign * step, 0.0, 1.0);
+                const double m = search.at(t, warm, others_at_best);
+                points.emplace_back(t, m);
+                minimum = std::min(minimum, m);
+                if (m > minimum + kProfileThreshold) {
+                    double a = inside;
+                    double b = t;
+                    auto w = warm;
+                    for (int k = 0; k < 14; ++k) {
+                        const double mid = 0.5 * (a + b);
+                        (search.at(mid, w, others_at_best) > minimum + kProfileThreshold ? b : a) =
+                            mid;
+                    }
+                    ends[side] = 0.5 * (a + b);
+                    break;
+                }
+                if (t <= 0.0 || t >= 1.0) break;
+                inside = t;
+                step *= 2.0;
             }
         }
+        std::sort(points.begin(), points.end());
+        for (const auto& [t, m] : points) {
+            f.profile.values.push_back(free[j].lo + t * (free[j].hi - free[j].lo));
+            f.profile.misfit.push_back(m);
+        }
+        f.lo95 = free[j].lo + ends[0] * (free[j].hi - free[j].lo);
+        f.hi95 = free[j].lo + ends[1] * (free[j].hi - free[j].lo);
         const double width = free[j].hi - free[j].lo;
         const double share = (f.hi95 - f.lo95) / width;
         f.identifiable = share <= kIdentifiableShare;
@@ -104,7 +195,9 @@ std::vector<ParameterFinding> assess_identifiability(const FeatureEmulator& emul
             f.information_share[level_of(measurement, measurement.features[k])] += info;
             total += info;
         }
-        for (auto& s : f.information_share) s = total > 1e-12 ? s / total : 0.0;
+        // Information below 1 means a standard deviation beyond the whole search interval
+        // (σ_u = 1/sqrt(F) in the unit cube): no level informs it, all shares are 0.
+        for (auto& s : f.information_share) s = total >= 1.0 ? s / total : 0.0;
         findings.push_back(f);
     }
     return findings;

@@ -15,44 +15,7 @@ namespace sb::correlation {
 namespace {
 
 namespace fs = std::filesystem;
-using testing::fresh_dir;
-using testing::predict;
-
-bench::CampaignConfig rigid_h0() {
-    auto config =
-        bench::load_campaign_config(std::string(SB_SOURCE_DIR) + "/configs/paper000-h0.toml");
-    bench::apply_overrides(config, {"dampers.pd.model=rigid", "campaign.levels_g=[1.0, 2.0]"});
-    return config;
-}
-
-struct Truth {
-    double damping_ratio = 0.008;
-    double modulus_pa = 69.0e9;
-};
-
-/// The rigid bench with the true values, predicted, 2 % noise on every channel.
-fs::path measured_linear_bench(const std::string& name, const Truth& truth) {
-    auto config = rigid_h0();
-    bench::apply_overrides(config,
-                           {"structure.damping.default_ratio=" + exact_text(truth.damping_ratio),
-                            "structure.beam.youngs_modulus_pa=" + exact_text(truth.modulus_pa)});
-    const auto dir = fresh_dir(name);
-    testing::write_noisy_recording(predict(config, {}, 1), 0.02, 7, dir);
-    return dir;
-}
-
-std::vector<FreeParameter> linear_free(const bench::CampaignConfig& config) {
-    return parse_free_parameters(config, {"structure.damping.default_ratio=0.002:0.02",
-                                          "structure.beam.youngs_modulus_pa=60e9:80e9",
-                                          "dampers.pd.contact.rolling_friction"});
-}
-
-const ParameterFinding& finding(const CalibrationResult& r, const std::string& path) {
-    for (const auto& f : r.findings) {
-        if (f.parameter.path == path) return f;
-    }
-    throw std::runtime_error("no finding for " + path);
-}
+using namespace testing;
 
 void expect_recovered(const CalibrationResult& r, const Truth& truth) {
     ASSERT_EQ(r.findings.size(), 3U) << r.findings_note;
@@ -63,12 +26,12 @@ void expect_recovered(const CalibrationResult& r, const Truth& truth) {
     // frequency, f ∝ sqrt(E)) far better.
     EXPECT_TRUE(zeta.identifiable) << zeta.reason;
     EXPECT_NEAR(zeta.value, truth.damping_ratio, 0.05 * truth.damping_ratio);
-    EXPECT_LE(zeta.lo95, truth.damping_ratio);
-    EXPECT_GE(zeta.hi95, truth.damping_ratio);
+    EXPECT_LE(zeta.lo95, truth.damping_ratio) << zeta.reason << ", value " << zeta.value;
+    EXPECT_GE(zeta.hi95, truth.damping_ratio) << zeta.reason << ", value " << zeta.value;
     EXPECT_TRUE(modulus.identifiable) << modulus.reason;
     EXPECT_NEAR(modulus.value, truth.modulus_pa, 0.005 * truth.modulus_pa);
     // A rigid bed has no rolling friction: nothing in the data depends on it.
-    EXPECT_FALSE(rolling.identifiable) << rolling.reason;
+    EXPECT_FALSE(rolling.identifiable) << rolling.reason << "; modulus " << modulus.reason;
     EXPECT_GT(rolling.hi95 - rolling.lo95, 0.5 * 0.05);
     for (double share : rolling.information_share) EXPECT_LT(share, 1e-6);
     EXPECT_LT(r.best.misfit, 0.25 * r.start.misfit);
@@ -77,8 +40,7 @@ void expect_recovered(const CalibrationResult& r, const Truth& truth) {
 TEST(Calibration,
      DirectSearchRecoversTheDampingAndModulusOfALinearBenchAndFlagsAKeyWithoutInfluence) {
     const Truth truth;
-    const auto measured =
-        read_measurement(measured_linear_bench("direct", truth), {0.02, 0.002, 0.02});
+    const auto measured = read_measurement(measured_linear_bench("direct", truth), kStated);
     EXPECT_EQ(measured.depth, "points.csv");
     const auto config = rigid_h0();
     CalibrationOptions options;
@@ -87,14 +49,17 @@ TEST(Calibration,
     options.search.budget = 60;
     const auto result = calibrate(config, measured, linear_free(config), options);
     expect_recovered(result, truth);
-    EXPECT_EQ(result.outcome.evaluations, static_cast<int>(result.history.size()));
+    // The search within its budget, then a stencil around the emulator's minimum (both sides
+    // of each value, one side at the end of an interval) and the simulation that confirms it.
     EXPECT_LE(result.outcome.evaluations, 60);
+    const int after_search = static_cast<int>(result.history.size()) - result.outcome.evaluations;
+    EXPECT_GE(after_search, 3 + 1);
+    EXPECT_LE(after_search, 2 * 3 + 1);
 }
 
 TEST(Calibration, TheSurrogateFindsTheSameInFewerSimulations) {
     const Truth truth;
-    const auto measured =
-        read_measurement(measured_linear_bench("surrogate", truth), {0.02, 0.002, 0.02});
+    const auto measured = read_measurement(measured_linear_bench("surrogate", truth), kStated);
     const auto config = rigid_h0();
     CalibrationOptions options;
     options.simulate = predict;
@@ -118,7 +83,8 @@ TEST(Calibration, AnInterruptedOrRepeatedCalibrationTakesEveryEvaluationFromItsC
     options.cache_dir = cache;
     options.search.budget = 12;
     const auto first = calibrate(config, measured, linear_free(config), options);
-    EXPECT_EQ(first.simulations, 12);
+    EXPECT_GT(first.simulations, 0);
+    EXPECT_LE(first.simulations, 12 + 2 * 3 + 1);
     const auto again = calibrate(config, measured, linear_free(config), options);
     EXPECT_EQ(again.simulations, 0);
     EXPECT_EQ(again.best.values, first.best.values);
@@ -135,8 +101,7 @@ TEST(Calibration, AnInterruptedOrRepeatedCalibrationTakesEveryEvaluationFromItsC
 
 TEST(Calibration, TheReportAndTheCalibratedConfigAreWritten) {
     const Truth truth;
-    const auto measured =
-        read_measurement(measured_linear_bench("report", truth), {0.02, 0.002, 0.02});
+    const auto measured = read_measurement(measured_linear_bench("report", truth), kStated);
     const auto config = rigid_h0();
     CalibrationOptions options;
     options.simulate = predict;
@@ -154,6 +119,28 @@ TEST(Calibration, TheReportAndTheCalibratedConfigAreWritten) {
               result.best.values[0]);
     const std::string toml = read_text_file(out / "calibration.toml");
     EXPECT_NE(toml.find("identifiable = false"), std::string::npos);
+}
+
+TEST(Calibration, ADemDamperWithOneFillingPerLevelIsRefusedBeforeAnySimulation) {
+    auto config = bench::load_campaign_config(std::string(SB_SOURCE_DIR) +
+                                              "/tests/bench/golden/small-h0.toml");
+    Measurement m;
+    m.features.push_back(Feature{"H-0", 1.0, FeatureKind::damping_ratio, 0.0, 0.02, 0.001});
+    m.selection.sweeps.push_back({"H-0", 1.0, {}});
+    CalibrationOptions options;
+    options.simulate = [](const bench::CampaignConfig&, const bench::Selection&,
+                          int) -> bench::CampaignResult {
+        ADD_FAILURE() << "simulated";
+        return {};
+    };
+    try {
+        calibrate(config, m, default_free_parameters(config), options);
+        ADD_FAILURE() << "no error";
+    } catch (const config::ConfigException& e) {
+        EXPECT_NE(std::string(e.what()).find("campaign.seeds = 1: must be at least 2"),
+                  std::string::npos)
+            << e.what();
+    }
 }
 
 TEST(Measurement, ADampingCsvAloneGivesFrequencyAndDampingPerLevelOnTheConfigsGrid) {
@@ -177,7 +164,7 @@ TEST(Measurement, ADampingCsvAloneGivesFrequencyAndDampingPerLevelOnTheConfigsGr
     EXPECT_THROW(read_measurement(fresh_dir("nothing-there")), std::invalid_argument);
 }
 
-TEST(Measurement, RepeatsGiveTheUncertaintyInsteadOfTheStatedOne) {
+TEST(Measurement, RepeatsScatteringMoreThanTheStatedUncertaintyGiveTheirs) {
     const auto dir = fresh_dir("repeats");
     fs::create_directories(dir);
     identification::DampingRow row;
@@ -187,14 +174,14 @@ TEST(Measurement, RepeatsGiveTheUncertaintyInsteadOfTheStatedOne) {
     row.damping_ratio = 0.02;
     row.method = "circle-fit";
     row.fillings = 4;
-    row.damping_ratio_std = 0.002;
-    row.natural_frequency_std_hz = 0.02;
+    row.damping_ratio_std = 0.004;        // over sqrt(4): 0.002, above 5 % of 0.02
+    row.natural_frequency_std_hz = 0.01;  // over sqrt(4): 0.005, below 0.2 % of 6.5 Hz
     identification::write_damping_csv(dir / "damping.csv", {row});
     const auto m = read_measurement(dir);
     ASSERT_EQ(m.features.size(), 2U);
     EXPECT_TRUE(m.features[1].sigma_from_repeats);
-    EXPECT_DOUBLE_EQ(m.features[1].sigma, 0.002 / 2.0);
-    EXPECT_DOUBLE_EQ(m.features[0].sigma, 0.02 / 2.0);
+    EXPECT_DOUBLE_EQ(m.features[1].sigma, 0.004 / 2.0);
+    EXPECT_DOUBLE_EQ(m.features[0].sigma, 0.002 * 6.5);
 }
 
 }  // namespace
