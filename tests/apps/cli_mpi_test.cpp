@@ -88,6 +88,14 @@ void expect_same_files(const fs::path& expected, const fs::path& actual) {
     }
 }
 
+/// The number of finished points a sweep's checkpoint holds (0 while it has none).
+int points_done(const fs::path& checkpoint) {
+    const std::regex done("points_done ([0-9]+)\n");
+    const std::string text = file_text(checkpoint);
+    std::smatch match;
+    return std::regex_search(text, match, done) ? std::stoi(match[1]) : 0;
+}
+
 TEST(CliMpi, TwoRanksGiveTheFilesOfOneProcessAndAKilledRankLosesOnlyItsPointInProgress) {
     const auto dir = temp_dir("mpi-" + std::to_string(getpid()));
     const auto config = write_campaign(dir);
@@ -121,25 +129,27 @@ TEST(CliMpi, TwoRanksGiveTheFilesOfOneProcessAndAKilledRankLosesOnlyItsPointInPr
     const std::regex rank1("rank 1 of 2: pid ([0-9]+)");
     pid_t rank1_pid = 0;
     bool killed_mid_run = false;
-    for (int i = 0; i < 60000 && !killed_mid_run; ++i) {
+    bool run_ended = false;
+    int status = 0;
+    // Polled until both sweeps have a point in their checkpoints (a sweep may be several
+    // points ahead of the other by then) or the run has ended without that moment being seen.
+    while (!killed_mid_run && !run_ended) {
         std::smatch match;
         const std::string output = file_text(log);
         if (rank1_pid == 0 && std::regex_search(output, match, rank1)) {
             rank1_pid = static_cast<pid_t>(std::stol(match[1]));
         }
-        const bool both =
-            file_text(killed / "checkpoints" / "H-0_1.5g.txt").find("points_done 1\n") !=
-                std::string::npos &&
-            file_text(killed / "checkpoints" / "H-0_3g.txt").find("points_done 1\n") !=
-                std::string::npos;
+        const bool both = points_done(killed / "checkpoints" / "H-0_1.5g.txt") >= 1 &&
+                          points_done(killed / "checkpoints" / "H-0_3g.txt") >= 1;
         if (rank1_pid != 0 && both) {
             kill(rank1_pid, SIGKILL);
             killed_mid_run = true;
+        } else {
+            run_ended = waitpid(child, &status, WNOHANG) == child;
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
         }
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
-    int status = 0;
-    waitpid(child, &status, 0);
+    if (!run_ended) waitpid(child, &status, 0);
     ASSERT_TRUE(killed_mid_run) << file_text(log);
     EXPECT_FALSE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << file_text(log);
     ASSERT_FALSE(fs::exists(killed / "points.csv")) << "killed too late";
