@@ -21,6 +21,8 @@ struct CalibrateArgs {
     std::vector<std::string> free;
     int budget = 30;
     std::string mode = "direct";
+    std::string fidelity = "coupled";
+    int characterization_frequencies = 3;
     std::string out_dir;
     int threads = 0;
     double damping_uncertainty = 0.05;
@@ -51,6 +53,9 @@ int run(const CalibrateArgs& args) {
         options.search.mode = args.mode == "surrogate" ? correlation::SearchMode::surrogate
                                                        : correlation::SearchMode::direct;
         options.search.budget = args.budget;
+        options.fidelity = args.fidelity == "two-fidelity" ? correlation::Fidelity::two_fidelity
+                                                           : correlation::Fidelity::coupled;
+        options.characterization_frequencies = args.characterization_frequencies;
         options.threads = args.threads;
         options.cache_dir = out_dir / "cache";
         if (!args.quiet) {
@@ -58,16 +63,30 @@ int run(const CalibrateArgs& args) {
                       << measurement.features.size() << " features of " << args.measured << " ("
                       << measurement.depth << "), "
                       << correlation::search_mode_name(options.search.mode) << " search, budget "
-                      << args.budget << " evaluations\n";
+                      << args.budget << " evaluations";
+            if (options.fidelity == correlation::Fidelity::two_fidelity) {
+                std::cerr << " of the describing-function prediction (the damper characterised "
+                             "on "
+                          << args.characterization_frequencies
+                          << " frequencies per level), corrected and confirmed coupled";
+            }
+            std::cerr << '\n';
             options.progress = [](const std::string& line) {
                 std::cerr << line << '\n' << std::flush;
             };
         }
         const auto result = correlation::calibrate(*config, measurement, free, options);
         correlation::write_calibration(out_dir, result, measurement, args.command_line);
-        std::cout << "calibration " << config->name << ": " << result.outcome.evaluations
-                  << " evaluations (" << result.simulations << " simulated), misfit "
-                  << std::setprecision(4) << result.start.misfit << " -> " << result.best.misfit
+        std::cout << "calibration " << config->name << ": ";
+        if (result.fidelity == correlation::Fidelity::two_fidelity) {
+            std::cout << result.low_fidelity_history.size() << " predicted evaluations ("
+                      << result.low_fidelity_simulations << " simulated), " << result.simulations
+                      << " coupled simulations, misfit ";
+        } else {
+            std::cout << result.outcome.evaluations << " evaluations (" << result.simulations
+                      << " simulated), misfit ";
+        }
+        std::cout << std::setprecision(4) << result.start.misfit << " -> " << result.best.misfit
                   << '\n';
         for (std::size_t j = 0; j < free.size(); ++j) {
             std::cout << "  " << free[j].path << ": ";
@@ -117,6 +136,15 @@ void register_calibrate_command(CLI::App& app, int& exit_code) {
     cmd->add_option("--mode", args->mode,
                     "direct (DIRECT-L then BOBYQA) or surrogate (emulator, expected improvement)")
         ->check(CLI::IsMember({"direct", "surrogate"}));
+    cmd->add_option("--fidelity", args->fidelity,
+                    "coupled (every evaluation a coupled campaign) or two-fidelity (the search "
+                    "on the describing-function prediction, corrected and confirmed by coupled "
+                    "campaigns; --budget counts the predictions)")
+        ->check(CLI::IsMember({"coupled", "two-fidelity"}));
+    cmd->add_option("--characterize-frequencies", args->characterization_frequencies,
+                    "two-fidelity: frequencies per level the damper is characterised on, "
+                    "equally spaced over the grid (default 3)")
+        ->check(CLI::Range(2, 100));
     cmd->add_option("-o,--out", args->out_dir,
                     "output directory (default: out/<campaign name>-calibrated)");
     cmd->add_option("-j,--threads", args->threads, "threads (default: all cores)")
@@ -141,6 +169,10 @@ void register_calibrate_command(CLI::App& app, int& exit_code) {
         args->command_line += " --measured " + args->measured;
         for (const auto& f : args->free) args->command_line += " --free " + f;
         args->command_line += " --budget " + std::to_string(args->budget) + " --mode " + args->mode;
+        if (args->fidelity != "coupled") {
+            args->command_line += " --fidelity " + args->fidelity + " --characterize-frequencies " +
+                                  std::to_string(args->characterization_frequencies);
+        }
         if (!args->out_dir.empty()) args->command_line += " --out " + args->out_dir;
         args->command_line += overrides_text(args->overrides);
         exit_code = run(*args);

@@ -3,12 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <nlopt.hpp>
 #include <stdexcept>
 
 #include "config/errors.hpp"
 #include "correlation/emulator.hpp"
-#include "correlation/space_filling.hpp"
+#include "correlation/two_fidelity.hpp"
 
 namespace sb::correlation {
 namespace {
@@ -32,50 +31,11 @@ double level_misfit(const Evaluation& e, const Measurement& m, const std::string
     return misfit;
 }
 
-/// The unit-cube point of least emulated misfit: a space-filling search and a cloud around
-/// `near` (the search's best), then BOBYQA on the emulator (it costs microseconds).
-std::vector<double> emulator_minimum(const FeatureEmulator& emulator,
-                                     const std::vector<FreeParameter>& free,
-                                     const std::vector<double>& near) {
-    const int d = static_cast<int>(free.size());
-    std::vector<double> best = near;
-    double least = emulator.misfit(near);
-    auto pool = halton(2048, d);
-    for (const auto& z : halton(512, d, 4096)) {
-        std::vector<double> u(z.size());
-        for (int j = 0; j < d; ++j) u[j] = std::clamp(near[j] + 0.2 * (z[j] - 0.5), 0.0, 1.0);
-        pool.push_back(u);
-    }
-    for (const auto& u : pool) {
-        const double m = emulator.misfit(u);
-        if (m < least) {
-            least = m;
-            best = u;
-        }
-    }
-    nlopt::opt opt(d >= 2 ? nlopt::LN_BOBYQA : nlopt::LN_COBYLA, static_cast<unsigned>(d));
-    opt.set_lower_bounds(std::vector<double>(free.size(), 0.0));
-    opt.set_upper_bounds(std::vector<double>(free.size(), 1.0));
-    opt.set_min_objective(
-        [](const std::vector<double>& u, std::vector<double>& /*gradient*/, void* data) {
-            return static_cast<const FeatureEmulator*>(data)->misfit(u);
-        },
-        const_cast<FeatureEmulator*>(&emulator));
-    opt.set_maxeval(400);
-    opt.set_xtol_abs(1e-5);
-    opt.set_initial_step(0.02);
-    std::vector<double> u = best;
-    double value = least;
-    try {
-        opt.optimize(u, value);
-        if (value < least) best = u;
-    } catch (const std::exception&) {
-        // a failed local polish keeps the searched point
-    }
-    return best;
-}
-
 }  // namespace
+
+std::string fidelity_name(Fidelity fidelity) {
+    return fidelity == Fidelity::coupled ? "coupled" : "two-fidelity";
+}
 
 CalibrationResult calibrate(const bench::CampaignConfig& config, const Measurement& measurement,
                             const std::vector<FreeParameter>& free,
@@ -100,49 +60,94 @@ CalibrationResult calibrate(const bench::CampaignConfig& config, const Measureme
     eo.cache_dir = options.cache_dir;
     eo.progress = options.progress;
     eo.simulate = options.simulate;
-    // The search's budget, the stencil around the answer and its confirmation.
-    eo.expected_evaluations = options.search.budget + 2 * static_cast<int>(free.size()) + 1;
+    const int stencil = 2 * static_cast<int>(free.size()) + 1;
+    // The search's budget, the stencil around the answer and its confirmation; two-fidelity:
+    // the start, the stencils and the confirmation.
+    eo.expected_evaluations = options.fidelity == Fidelity::coupled
+                                  ? options.search.budget + stencil
+                                  : 2 + kTwoFidelityCorrections * stencil;
     Evaluator evaluator(config, free, measurement, eo);
 
     CalibrationResult result;
     result.search = options.search;
     result.free = free;
-    result.outcome = search(evaluator, options.search);
-    result.history = evaluator.history();
-    result.simulations = evaluator.simulations();
-    const bool any_success = std::any_of(result.history.begin(), result.history.end(),
-                                         [](const Evaluation& e) { return e.error.empty(); });
-    if (!any_success) {
-        throw std::runtime_error("every simulation of the calibration failed; the first: " +
-                                 result.history.front().error);
-    }
-    result.start = result.history.front();
-    std::vector<double> best_values = result.outcome.best_values;
-    try {
-        // The answer is where the emulator, trained on every evaluation, puts the least
-        // misfit: it averages the seed scatter that makes single evaluations of a DEM
-        // campaign jitter. That point is simulated once more to confirm it (and to give the
-        // residuals after), unless it was evaluated already.
-        const FeatureEmulator global(measurement, free, result.history);
-        auto u = emulator_minimum(global, free, to_unit(free, best_values));
-        // A stencil of simulations around it (±kStencilStep of each interval) so that the
-        // emulator resolves the misfit's valley there, which the search's points spread over
-        // the whole box cannot: the intervals rest on it.
-        std::vector<std::vector<double>> stencil;
-        for (std::size_t j = 0; j < free.size(); ++j) {
-            for (const double sign : {-1.0, 1.0}) {
-                auto v = u;
-                v[j] = std::clamp(u[j] + sign * kStencilStep, 0.0, 1.0);
-                if (v != u) stencil.push_back(to_values(free, v));
-            }
+    result.fidelity = options.fidelity;
+    std::vector<double> best_values;
+    if (options.fidelity == Fidelity::two_fidelity) {
+        EvaluatorOptions lo = eo;
+        lo.fidelity = "prediction";
+        lo.expected_evaluations = options.search.budget;
+        lo.simulate = options.low_fidelity_simulate;
+        if (!lo.simulate) {
+            const auto folder =
+                options.cache_dir.empty()
+                    ? std::filesystem::temp_directory_path() /
+                          ("shakerbench-characterizations-" + stable_hash(config.source))
+                    : options.cache_dir / "characterizations";
+            lo.simulate =
+                describing_function_simulation(folder, options.characterization_frequencies);
         }
-        evaluator.evaluate(stencil);
-        const FeatureEmulator emulator(measurement, free, evaluator.history());
-        u = emulator_minimum(emulator, free, u);
-        best_values = to_values(free, u);
-        result.findings = assess_identifiability(emulator, measurement, free, u);
-    } catch (const std::invalid_argument& e) {
-        result.findings_note = std::string("no intervals: ") + e.what();
+        Evaluator low(config, free, measurement, lo);
+        // The residuals before, on the coupled simulation.
+        std::vector<double> start(free.size());
+        for (std::size_t j = 0; j < free.size(); ++j) start[j] = free[j].start;
+        result.start = evaluator.evaluate(start);
+        if (!result.start.error.empty()) {
+            throw std::runtime_error("the coupled simulation at the config's values failed: " +
+                                     result.start.error);
+        }
+        try {
+            const TwoFidelityOutcome two = two_fidelity_search(low, evaluator, options.search);
+            result.outcome = two.low_search;
+            result.corrections = two.corrections;
+            result.corrections_stopped = two.stopped;
+            best_values = two.best_values;
+            const FeatureEmulator emulator(measurement, free, two.corrected_history);
+            result.findings =
+                assess_identifiability(emulator, measurement, free, to_unit(free, best_values));
+        } catch (const std::invalid_argument& e) {
+            result.findings_note = std::string("no intervals: ") + e.what();
+            best_values = result.start.values;
+        }
+        result.low_fidelity_history = low.history();
+        result.low_fidelity_simulations = low.simulations();
+    } else {
+        result.outcome = search(evaluator, options.search);
+        best_values = result.outcome.best_values;
+        const auto& history = evaluator.history();
+        const bool any_success = std::any_of(history.begin(), history.end(),
+                                             [](const Evaluation& e) { return e.error.empty(); });
+        if (!any_success) {
+            throw std::runtime_error("every simulation of the calibration failed; the first: " +
+                                     history.front().error);
+        }
+        result.start = history.front();
+        try {
+            // The answer is where the emulator, trained on every evaluation, puts the least
+            // misfit: it averages the seed scatter that makes single evaluations of a DEM
+            // campaign jitter. That point is simulated once more to confirm it (and to give
+            // the residuals after), unless it was evaluated already.
+            const FeatureEmulator global(measurement, free, history);
+            auto u = least_emulated_misfit(global, free, to_unit(free, best_values));
+            // A stencil of simulations around it (±kStencilStep of each interval) so that the
+            // emulator resolves the misfit's valley there, which the search's points spread
+            // over the whole box cannot: the intervals rest on it.
+            std::vector<std::vector<double>> points;
+            for (std::size_t j = 0; j < free.size(); ++j) {
+                for (const double sign : {-1.0, 1.0}) {
+                    auto v = u;
+                    v[j] = std::clamp(u[j] + sign * kStencilStep, 0.0, 1.0);
+                    if (v != u) points.push_back(to_values(free, v));
+                }
+            }
+            evaluator.evaluate(points);
+            const FeatureEmulator emulator(measurement, free, evaluator.history());
+            u = least_emulated_misfit(emulator, free, u);
+            best_values = to_values(free, u);
+            result.findings = assess_identifiability(emulator, measurement, free, u);
+        } catch (const std::invalid_argument& e) {
+            result.findings_note = std::string("no intervals: ") + e.what();
+        }
     }
     result.best = evaluator.evaluate(best_values);
     if (!result.best.error.empty()) {

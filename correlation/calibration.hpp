@@ -9,18 +9,31 @@
 
 #include "correlation/evaluator.hpp"
 #include "correlation/identifiability.hpp"
+#include "correlation/prediction_fidelity.hpp"
 #include "correlation/search.hpp"
 
 namespace sb::correlation {
 
+/// What the search runs on: the coupled simulation alone, or the two-fidelity scheme
+/// (correlation/two_fidelity.hpp): the search on the describing-function prediction, the
+/// coupled simulation correcting and confirming it.
+enum class Fidelity { coupled, two_fidelity };
+
+/// "coupled", "two-fidelity".
+std::string fidelity_name(Fidelity fidelity);
+
 struct CalibrationOptions {
-    SearchOptions search;
+    SearchOptions search;  ///< two-fidelity: its budget counts low-fidelity evaluations
+    Fidelity fidelity = Fidelity::coupled;
     int threads = 0;                  ///< 0: the hardware's
     std::filesystem::path cache_dir;  ///< the evaluations kept; empty: memory only
     std::function<void(const std::string&)> progress;
     /// How a config is simulated (EvaluatorOptions::simulate); empty: the coupled campaign.
-    std::function<bench::CampaignResult(const bench::CampaignConfig&, const bench::Selection&, int)>
-        simulate;
+    Simulation simulate;
+    /// Two-fidelity: the low fidelity's simulation; empty: describing_function_simulation in
+    /// cache_dir (else a temporary folder) on `characterization_frequencies` frequencies.
+    Simulation low_fidelity_simulate;
+    int characterization_frequencies = 3;
 };
 
 /// The misfit of one arrangement and level before and after.
@@ -45,11 +58,20 @@ struct CalibrationResult {
     int simulations = 0;  ///< evaluations simulated, not taken from the cache
     double wall_time_s = 0.0;
     std::vector<Evaluation> history;
+    Fidelity fidelity = Fidelity::coupled;
+    /// Two-fidelity: the low fidelity's evaluations, their simulations (not cached), the
+    /// coupled stencils that corrected it and why the corrections ended.
+    std::vector<Evaluation> low_fidelity_history;
+    int low_fidelity_simulations = 0;
+    int corrections = 0;
+    std::string corrections_stopped;
     bench::CampaignConfig calibrated;  ///< the config with the calibrated values
 };
 
 /// Fits `free` of `config` to `measurement`: the search of options.search, then the emulator
 /// trained on every evaluation for the profile intervals and the information per level.
+/// Two-fidelity: the search on the low fidelity, corrected by coupled stencils, the
+/// intervals from the corrected low-fidelity emulator; the answer confirmed coupled.
 /// Throws config::ConfigException when the config cannot simulate the measurement (an
 /// arrangement it lacks), std::runtime_error when every evaluation failed.
 CalibrationResult calibrate(const bench::CampaignConfig& config, const Measurement& measurement,

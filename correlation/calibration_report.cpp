@@ -65,7 +65,15 @@ std::string calibration_toml(const CalibrationResult& r, const Measurement& m,
         << "evaluations = " << r.outcome.evaluations << '\n'
         << "simulations = " << r.simulations << '\n'
         << "stopped = " << toml_string(r.outcome.stopped) << '\n'
-        << "wall_time_s = " << num(r.wall_time_s, 1, true) << '\n'
+        << "fidelity = " << toml_string(fidelity_name(r.fidelity)) << '\n';
+    if (r.fidelity == Fidelity::two_fidelity) {
+        // The budget and evaluations above are the low fidelity's; simulations the coupled.
+        out << "low_fidelity_evaluations = " << r.low_fidelity_history.size() << '\n'
+            << "low_fidelity_simulations = " << r.low_fidelity_simulations << '\n'
+            << "corrections = " << r.corrections << '\n'
+            << "corrections_stopped = " << toml_string(r.corrections_stopped) << '\n';
+    }
+    out << "wall_time_s = " << num(r.wall_time_s, 1, true) << '\n'
         << "misfit_start = " << num(r.start.misfit) << '\n'
         << "misfit_calibrated = " << num(r.best.misfit) << '\n'
         << "features = " << m.features.size() << '\n'
@@ -115,10 +123,19 @@ std::string report_md(const CalibrationResult& r, const Measurement& m,
         << " features over " << m.selection.sweeps.size()
         << " arrangement and level(s); damping by " << m.damping_method << ").\n\n"
         << "Search: " << search_mode_name(r.search.mode) << ", " << r.outcome.evaluations
-        << " evaluations of a budget of " << r.search.budget << ", " << r.simulations
+        << " evaluations of a budget of " << r.search.budget << ", "
+        << (r.fidelity == Fidelity::two_fidelity ? r.low_fidelity_simulations : r.simulations)
         << " simulated (the others from the cache); ended by " << r.outcome.stopped << "; "
-        << num(r.wall_time_s, 1, true) << " s.\n\n"
-        << "Misfit (½ χ², the residuals in standard deviations of the measurement and the "
+        << num(r.wall_time_s, 1, true) << " s.\n\n";
+    if (r.fidelity == Fidelity::two_fidelity) {
+        out << "Two-fidelity: the search ran on the describing-function prediction ("
+            << r.low_fidelity_history.size() << " evaluations, " << r.low_fidelity_simulations
+            << " simulated); " << r.corrections
+            << " stencil(s) of coupled simulations corrected it (" << r.corrections_stopped << "); "
+            << r.simulations
+            << " coupled simulations in all, the start and the confirmation included.\n\n";
+    }
+    out << "Misfit (½ χ², the residuals in standard deviations of the measurement and the "
            "simulation's seed scatter): "
         << num(r.start.misfit, 4) << " at the config's values, " << num(r.best.misfit, 4)
         << " calibrated.\n\n## Parameters\n\n"

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <nlopt.hpp>
 #include <random>
 #include <stdexcept>
+
+#include "correlation/space_filling.hpp"
 
 namespace sb::correlation {
 namespace {
@@ -145,6 +148,47 @@ double FeatureEmulator::expected_improvement(const std::vector<double>& u, doubl
         sum += std::max(0.0, best - m);
     }
     return sum / static_cast<double>(draws_.size());
+}
+
+std::vector<double> least_emulated_misfit(const FeatureEmulator& emulator,
+                                          const std::vector<FreeParameter>& free,
+                                          const std::vector<double>& near) {
+    const int d = static_cast<int>(free.size());
+    std::vector<double> best = near;
+    double least = emulator.misfit(near);
+    auto pool = halton(2048, d);
+    for (const auto& z : halton(512, d, 4096)) {
+        std::vector<double> u(z.size());
+        for (int j = 0; j < d; ++j) u[j] = std::clamp(near[j] + 0.2 * (z[j] - 0.5), 0.0, 1.0);
+        pool.push_back(u);
+    }
+    for (const auto& u : pool) {
+        const double m = emulator.misfit(u);
+        if (m < least) {
+            least = m;
+            best = u;
+        }
+    }
+    nlopt::opt opt(d >= 2 ? nlopt::LN_BOBYQA : nlopt::LN_COBYLA, static_cast<unsigned>(d));
+    opt.set_lower_bounds(std::vector<double>(free.size(), 0.0));
+    opt.set_upper_bounds(std::vector<double>(free.size(), 1.0));
+    opt.set_min_objective(
+        [](const std::vector<double>& u, std::vector<double>& /*gradient*/, void* data) {
+            return static_cast<const FeatureEmulator*>(data)->misfit(u);
+        },
+        const_cast<FeatureEmulator*>(&emulator));
+    opt.set_maxeval(400);
+    opt.set_xtol_abs(1e-5);
+    opt.set_initial_step(0.02);
+    std::vector<double> u = best;
+    double value = least;
+    try {
+        opt.optimize(u, value);
+        if (value < least) best = u;
+    } catch (const std::exception&) {
+        // a failed local polish keeps the searched point
+    }
+    return best;
 }
 
 }  // namespace sb::correlation

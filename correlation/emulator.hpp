@@ -42,4 +42,11 @@ class FeatureEmulator {
     int fillings_ = 1;  ///< fillings each simulated value averages
 };
 
+/// The unit-cube point of least emulated misfit: a space-filling search over the cube and a
+/// cloud around `near` (a search's best), then BOBYQA (COBYLA in one dimension) on the
+/// emulator, which costs microseconds per call.
+std::vector<double> least_emulated_misfit(const FeatureEmulator& emulator,
+                                          const std::vector<FreeParameter>& free,
+                                          const std::vector<double>& near);
+
 }  // namespace sb::correlation

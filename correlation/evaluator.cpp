@@ -73,6 +73,7 @@ Evaluator::Evaluator(bench::CampaignConfig config, std::vector<FreeParameter> fr
     // The layout: which points are simulated and which features are compared. Two
     // measurements with the same layout share the cached simulations.
     std::string layout = measurement_.response_channel + "|" + measurement_.damping_method + "\n";
+    if (!options_.fidelity.empty()) layout += "fidelity " + options_.fidelity + "\n";
     for (const auto& sweep : measurement_.selection.sweeps) {
         layout += sweep.arrangement + " " + number_text(sweep.level_g);
         for (double f : sweep.frequencies_hz) layout += " " + number_text(f);
@@ -148,6 +149,7 @@ std::vector<Evaluation> Evaluator::evaluate(const std::vector<std::vector<double
         history_.push_back(e);
         if (options_.progress) {
             std::ostringstream line;
+            if (!options_.fidelity.empty()) line << options_.fidelity << ' ';
             line << "evaluation " << history_.size();
             if (options_.expected_evaluations > 0) line << " of ~" << options_.expected_evaluations;
             line << ":";

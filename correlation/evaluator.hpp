@@ -47,6 +47,9 @@ struct EvaluatorOptions {
     std::function<bench::CampaignResult(const bench::CampaignConfig&, const bench::Selection&,
                                         int threads)>
         simulate;
+    /// What `simulate` is, when it is not the coupled campaign ("prediction"): it enters the
+    /// cache key (a prediction never stands in for a coupled run) and the progress lines.
+    std::string fidelity;
 };
 
 class Evaluator {

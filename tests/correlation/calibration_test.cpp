@@ -10,6 +10,7 @@
 #include "calibration_fixtures.hpp"
 #include "config/errors.hpp"
 #include "core/text_file.hpp"
+#include "correlation/two_fidelity.hpp"
 
 namespace sb::correlation {
 namespace {
@@ -71,6 +72,54 @@ TEST(Calibration, TheSurrogateFindsTheSameInFewerSimulations) {
     options.search.budget = 60;
     const auto direct = calibrate(config, measured, linear_free(config), options);
     EXPECT_LT(surrogate.simulations, direct.simulations);
+}
+
+TEST(Calibration, TwoFidelityCorrectsABiasedCheapModelWithAFewFullSimulations) {
+    const Truth truth;
+    const auto measured = read_measurement(measured_linear_bench("two-fidelity", truth), kStated);
+    const auto config = rigid_h0();
+    const auto free = parse_free_parameters(config, {"structure.damping.default_ratio=0.002:0.02",
+                                                     "structure.beam.youngs_modulus_pa=60e9:80e9"});
+    // The cheap model is wrong the way a describing function can be: more damping (0.15 % of
+    // critical) and a stiffer structure (2 %) than the full simulation at the same values.
+    const Simulation biased = [](const bench::CampaignConfig& c, const bench::Selection& s,
+                                 int threads) {
+        auto changed = c;
+        changed.structure.damping.default_ratio += 0.0015;
+        changed.structure.beam.youngs_modulus_pa *= 1.02;
+        return predict(changed, s, threads);
+    };
+    CalibrationOptions options;
+    options.simulate = predict;
+    options.low_fidelity_simulate = biased;
+    options.fidelity = Fidelity::two_fidelity;
+    options.search.mode = SearchMode::surrogate;
+    options.search.budget = 30;
+    const auto two = calibrate(config, measured, free, options);
+    ASSERT_EQ(two.findings.size(), 2U) << two.findings_note;
+    const auto& zeta = finding(two, "structure.damping.default_ratio");
+    const auto& modulus = finding(two, "structure.beam.youngs_modulus_pa");
+    EXPECT_NEAR(zeta.value, truth.damping_ratio, 0.05 * truth.damping_ratio)
+        << two.corrections_stopped;
+    EXPECT_NEAR(modulus.value, truth.modulus_pa, 0.005 * truth.modulus_pa)
+        << two.corrections_stopped;
+    EXPECT_TRUE(zeta.identifiable) << zeta.reason;
+    EXPECT_TRUE(modulus.identifiable) << modulus.reason;
+    // The full simulation: the start, one stencil of five, a few corrections and the
+    // confirmation; the coupled surrogate search takes some 30.
+    EXPECT_LE(two.simulations, 1 + 5 + (kTwoFidelityCorrections - 1) + 1);
+    EXPECT_GE(two.low_fidelity_simulations, 10);
+    EXPECT_LT(two.best.misfit, 0.25 * two.start.misfit);
+
+    // The cheap model alone, uncorrected, misses by about its bias.
+    options.fidelity = Fidelity::coupled;
+    options.simulate = biased;
+    const auto cheap = calibrate(config, measured, free, options);
+    EXPECT_GT(
+        std::abs(finding(cheap, "structure.damping.default_ratio").value - truth.damping_ratio),
+        0.1 * truth.damping_ratio);
+    EXPECT_GT(std::abs(finding(cheap, "structure.beam.youngs_modulus_pa").value - truth.modulus_pa),
+              0.01 * truth.modulus_pa);
 }
 
 TEST(Calibration, AnInterruptedOrRepeatedCalibrationTakesEveryEvaluationFromItsCache) {
