@@ -5,10 +5,15 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <sstream>
+#include <thread>
 
 #include "config/errors.hpp"
 #include "core/text_file.hpp"
 #include "correlation/calibration.hpp"
+#include "distributed/rounds.hpp"
+#include "distributed/session.hpp"
 #include "identification/file_error.hpp"
 #include "load_config.hpp"
 
@@ -33,9 +38,33 @@ struct CalibrateArgs {
     std::string command_line;
 };
 
+/// A rank other than 0: evaluates what rank 0 hands out; rank 0 reports everything else.
+int serve(distributed::Session& session, const distributed::TextEvaluation& simulator,
+          int threads) {
+    try {
+        distributed::serve_rounds(*session.transport(), threads, simulator);
+        return 0;
+    } catch (const std::exception& e) {
+        std::cerr << "shakerbench calibrate (" << session.describe() << "): " << e.what() << '\n';
+        session.abort(config::kExitFailure);  // rank 0 would wait for this rank forever
+    }
+}
+
 int run(const CalibrateArgs& args) {
+    std::optional<distributed::Session> session;
+    try {
+        session.emplace();
+    } catch (const std::exception& e) {
+        std::cerr << "shakerbench calibrate: " << e.what() << '\n';
+        return config::kExitBadInput;
+    }
+    const bool root = session->rank() == 0;
+    // Every rank reads the config and the measurement (the same files); rank 0 alone reports
+    // what is wrong with them.
+    std::ostringstream silenced;
+    std::ostream& errors = root ? std::cerr : silenced;
     int exit_code = 0;
-    auto config = load_config_or_report(args.config, args.overrides, exit_code);
+    auto config = load_config_or_report(args.config, args.overrides, exit_code, errors);
     if (!config) return exit_code;
     correlation::StatedUncertainty stated;
     stated.damping_relative = args.damping_uncertainty;
@@ -58,6 +87,26 @@ int run(const CalibrateArgs& args) {
         options.characterization_frequencies = args.characterization_frequencies;
         options.threads = args.threads;
         options.cache_dir = out_dir / "cache";
+        const int threads =
+            args.threads > 0 ? args.threads
+                             : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
+        const auto simulator =
+            correlation::calibration_simulator(*config, measurement, free, options);
+        if (session->size() > 1 && !args.quiet) {
+            // One write per line: the ranks share mpirun's stderr.
+            std::cerr << session->describe() + ", " + std::to_string(threads) + " threads\n"
+                      << std::flush;
+        }
+        if (!root) return serve(*session, simulator, threads);
+        // Rank 0 owns the cache and the search; each evaluation not in the cache runs on
+        // whichever rank is free. Declared after the session: it releases the other ranks
+        // when the calibration ends, however it ends.
+        distributed::DistributedRounds rounds(session->transport(), threads, simulator);
+        if (session->size() > 1) {
+            options.remote = [&rounds](const std::vector<std::string>& inputs) {
+                return rounds.run(inputs);
+            };
+        }
         if (!args.quiet) {
             std::cerr << "calibrating " << free.size() << " value(s) against "
                       << measurement.features.size() << " features of " << args.measured << " ("
@@ -76,7 +125,15 @@ int run(const CalibrateArgs& args) {
             };
         }
         const auto result = correlation::calibrate(*config, measurement, free, options);
+        rounds.finish();
         correlation::write_calibration(out_dir, result, measurement, args.command_line);
+        if (session->size() > 1 && !args.quiet) {
+            std::string line = "evaluations run per rank:";
+            for (const int n : rounds.evaluations_per_rank()) line += ' ' + std::to_string(n);
+            line += " (" + std::to_string(session->size()) + " ranks x " + std::to_string(threads) +
+                    " threads)\n";
+            std::cerr << line << std::flush;
+        }
         std::cout << "calibration " << config->name << ": ";
         if (result.fidelity == correlation::Fidelity::two_fidelity) {
             std::cout << result.low_fidelity_history.size() << " predicted evaluations ("
@@ -101,16 +158,16 @@ int run(const CalibrateArgs& args) {
         std::cout << "report: " << (out_dir / "report.md").string() << '\n';
         return 0;
     } catch (const config::ConfigException& e) {
-        std::cerr << e.what() << "\nshakerbench calibrate: nothing was simulated.\n";
+        errors << e.what() << "\nshakerbench calibrate: nothing was simulated.\n";
         return config::kExitBadInput;
     } catch (const identification::FileError& e) {
-        std::cerr << "shakerbench calibrate: " << e.what() << '\n';
+        errors << "shakerbench calibrate: " << e.what() << '\n';
         return config::kExitBadInput;
     } catch (const std::invalid_argument& e) {
-        std::cerr << "shakerbench calibrate: " << e.what() << '\n';
+        errors << "shakerbench calibrate: " << e.what() << '\n';
         return config::kExitBadInput;
     } catch (const std::exception& e) {
-        std::cerr << "shakerbench calibrate: " << e.what() << '\n';
+        errors << "shakerbench calibrate: " << e.what() << '\n';
         return config::kExitFailure;
     }
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 #include "config/errors.hpp"
@@ -31,7 +32,58 @@ double level_misfit(const Evaluation& e, const Measurement& m, const std::string
     return misfit;
 }
 
+constexpr const char* kCoupled = "coupled";
+constexpr const char* kPrediction = "prediction";
+
+/// options.remote for the evaluations of one fidelity: each input led by its name.
+std::function<std::vector<std::string>(const std::vector<std::string>&)> remote_of(
+    const CalibrationOptions& options, const std::string& fidelity) {
+    if (!options.remote) return {};
+    return [remote = options.remote, fidelity](const std::vector<std::string>& values) {
+        std::vector<std::string> inputs;
+        inputs.reserve(values.size());
+        for (const auto& v : values) inputs.push_back(fidelity + "\n" + v);
+        return remote(inputs);
+    };
+}
+
+/// The low fidelity's evaluator options: those of the coupled one, another simulation.
+EvaluatorOptions low_fidelity_options(const bench::CampaignConfig& config,
+                                      const CalibrationOptions& options, EvaluatorOptions lo) {
+    lo.fidelity = kPrediction;
+    lo.expected_evaluations = options.search.budget;
+    lo.simulate = options.low_fidelity_simulate;
+    lo.remote = remote_of(options, kPrediction);
+    if (!lo.simulate) {
+        const auto folder =
+            options.cache_dir.empty()
+                ? std::filesystem::temp_directory_path() /
+                      ("shakerbench-characterizations-" + stable_hash(config.source))
+                : options.cache_dir / "characterizations";
+        lo.simulate = describing_function_simulation(folder, options.characterization_frequencies);
+    }
+    return lo;
+}
+
 }  // namespace
+
+std::function<std::string(const std::string&, int)> calibration_simulator(
+    const bench::CampaignConfig& config, const Measurement& measurement,
+    const std::vector<FreeParameter>& free, const CalibrationOptions& options) {
+    EvaluatorOptions eo;
+    eo.simulate = options.simulate;
+    auto coupled = std::make_shared<const Evaluator>(config, free, measurement, eo);
+    auto low = std::make_shared<const Evaluator>(config, free, measurement,
+                                                 low_fidelity_options(config, options, eo));
+    return [coupled, low](const std::string& input, int threads) {
+        const auto newline = input.find('\n');
+        const std::string fidelity = input.substr(0, newline);
+        const std::string values = newline == std::string::npos ? "" : input.substr(newline + 1);
+        if (fidelity == kCoupled) return coupled->simulate_text(values, threads);
+        if (fidelity == kPrediction) return low->simulate_text(values, threads);
+        throw std::invalid_argument("an evaluation of an unknown fidelity: " + fidelity);
+    };
+}
 
 std::string fidelity_name(Fidelity fidelity) {
     return fidelity == Fidelity::coupled ? "coupled" : "two-fidelity";
@@ -60,6 +112,7 @@ CalibrationResult calibrate(const bench::CampaignConfig& config, const Measureme
     eo.cache_dir = options.cache_dir;
     eo.progress = options.progress;
     eo.simulate = options.simulate;
+    eo.remote = remote_of(options, kCoupled);
     const int stencil = 2 * static_cast<int>(free.size()) + 1;
     // The search's budget, the stencil around the answer and its confirmation; two-fidelity:
     // the start, the stencils and the confirmation.
@@ -74,19 +127,7 @@ CalibrationResult calibrate(const bench::CampaignConfig& config, const Measureme
     result.fidelity = options.fidelity;
     std::vector<double> best_values;
     if (options.fidelity == Fidelity::two_fidelity) {
-        EvaluatorOptions lo = eo;
-        lo.fidelity = "prediction";
-        lo.expected_evaluations = options.search.budget;
-        lo.simulate = options.low_fidelity_simulate;
-        if (!lo.simulate) {
-            const auto folder =
-                options.cache_dir.empty()
-                    ? std::filesystem::temp_directory_path() /
-                          ("shakerbench-characterizations-" + stable_hash(config.source))
-                    : options.cache_dir / "characterizations";
-            lo.simulate =
-                describing_function_simulation(folder, options.characterization_frequencies);
-        }
+        EvaluatorOptions lo = low_fidelity_options(config, options, eo);
         Evaluator low(config, free, measurement, lo);
         // The residuals before, on the coupled simulation.
         std::vector<double> start(free.size());

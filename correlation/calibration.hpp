@@ -34,6 +34,10 @@ struct CalibrationOptions {
     /// cache_dir (else a temporary folder) on `characterization_frequencies` frequencies.
     Simulation low_fidelity_simulate;
     int characterization_frequencies = 3;
+    /// Simulates evaluations in other processes (MPI ranks; distributed/rounds.hpp): each
+    /// input is a fidelity's name and the values as text, answered by the text of
+    /// calibration_simulator on another rank. Empty: this process's threads.
+    std::function<std::vector<std::string>(const std::vector<std::string>& inputs)> remote;
 };
 
 /// The misfit of one arrangement and level before and after.
@@ -77,6 +81,13 @@ struct CalibrationResult {
 CalibrationResult calibrate(const bench::CampaignConfig& config, const Measurement& measurement,
                             const std::vector<FreeParameter>& free,
                             const CalibrationOptions& options);
+
+/// What another process of a distributed calibration runs for each input of
+/// CalibrationOptions::remote: the same config, measurement, free values and options as the
+/// calibrating process (its remote and cache unused) give the same simulation.
+std::function<std::string(const std::string& input, int threads)> calibration_simulator(
+    const bench::CampaignConfig& config, const Measurement& measurement,
+    const std::vector<FreeParameter>& free, const CalibrationOptions& options);
 
 /// Writes calibration.toml (values, intervals, identifiability, evaluations), report.md,
 /// calibrated.toml (the resolved config with the calibrated values, ready to run),

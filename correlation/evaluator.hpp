@@ -50,6 +50,10 @@ struct EvaluatorOptions {
     /// What `simulate` is, when it is not the coupled campaign ("prediction"): it enters the
     /// cache key (a prediction never stands in for a coupled run) and the progress lines.
     std::string fidelity;
+    /// Simulates the evaluations that are not cached elsewhere (other processes, MPI ranks):
+    /// given each one's values as text (Evaluator::simulate_text's input), returns each one's
+    /// result as text (its output), in order. Empty: this process's threads simulate.
+    std::function<std::vector<std::string>(const std::vector<std::string>& values_texts)> remote;
 };
 
 class Evaluator {
@@ -73,8 +77,21 @@ class Evaluator {
     /// Residuals and misfit of simulated features against the measurement.
     void compare(Evaluation& evaluation) const;
 
+    /// For another process of a distributed calibration: simulates the free values of
+    /// `values_text` (numbers separated by spaces) without the cache and returns the result as
+    /// the cache file's text. Throws std::invalid_argument for values that do not read.
+    [[nodiscard]] std::string simulate_text(const std::string& values_text, int threads) const;
+
   private:
+    /// The evaluation's values and key, and the config with the values set; false (the error
+    /// set and compared) when the values cannot be set.
+    bool prepare(const std::vector<double>& values, Evaluation& evaluation,
+                 bench::CampaignConfig& changed) const;
+    void simulate(const bench::CampaignConfig& changed, Evaluation& evaluation, int threads) const;
     Evaluation run_one(const std::vector<double>& values, int threads) const;
+    std::vector<Evaluation> evaluate_remotely(const std::vector<std::vector<double>>& batch);
+    /// Adds a batch's evaluations to the history and prints their progress lines.
+    void record(const std::vector<Evaluation>& results);
     bool load(const std::string& key, Evaluation& evaluation) const;
     void store(const Evaluation& evaluation) const;
 
@@ -86,6 +103,13 @@ class Evaluator {
     std::vector<Evaluation> history_;
     int simulations_ = 0;
 };
+
+/// An evaluation as text (the cache file's): its key, simulated features, error and time.
+std::string evaluation_text(const Evaluation& evaluation);
+/// Reads evaluation_text's output into `evaluation` (features, error, time, key); false when
+/// it is not whole, not of `key` or has other than `features` features.
+bool parse_evaluation_text(const std::string& text, const std::string& key, std::size_t features,
+                           Evaluation& evaluation);
 
 /// 16 hexadecimal digits of FNV-1a over `text`: stable across runs and machines.
 std::string stable_hash(const std::string& text);

@@ -165,4 +165,71 @@ TEST(CliMpi, TwoRanksGiveTheFilesOfOneProcessAndAKilledRankLosesOnlyItsPointInPr
     expect_same_files(one, killed);
 }
 
+/// calibration.toml without the lines that say how the run went (command, wall time,
+/// simulations rather than cache hits).
+std::string calibration_results(const fs::path& dir) {
+    std::istringstream in(file_text(dir / "calibration.toml"));
+    std::string kept;
+    for (std::string line; std::getline(in, line);) {
+        bool how = false;
+        for (const char* key : {"command = ", "wall_time_s = ", "simulations = "}) {
+            how = how || line.rfind(key, 0) == 0;
+        }
+        if (!how) kept += line + "\n";
+    }
+    return kept;
+}
+
+/// evaluations.csv without its last two columns (the simulation's wall time, the error).
+std::string evaluations_without_times(const fs::path& dir) {
+    std::istringstream in(file_text(dir / "evaluations.csv"));
+    std::string kept;
+    for (std::string line; std::getline(in, line);) {
+        const auto error = line.rfind(',');
+        const auto wall = line.rfind(',', error - 1);
+        kept += line.substr(0, wall) + line.substr(error) + "\n";
+    }
+    return kept;
+}
+
+TEST(CliMpi, TwoRanksShareACalibrationsEvaluationsAndFindWhatOneProcessFinds) {
+    const auto dir = temp_dir("mpi-calibrate-" + std::to_string(getpid()));
+    const auto config = write_rigid_campaign(dir);
+    const auto measured = dir / "measured";
+    ASSERT_EQ(run("run " + config.string() + " --out " + measured.string() + " -q").exit_code, 0);
+    const std::string calibrate =
+        " calibrate " + config.string() + " --measured " + measured.string() +
+        " --free structure.damping.default_ratio=0.002:0.02"
+        " --free structure.beam.youngs_modulus_pa=60e9:80e9 --mode surrogate --budget 9 -j 1";
+    const auto one = dir / "one-process";
+    const auto r = run(calibrate.substr(1) + " --out " + one.string() + " -q");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+
+    // Two ranks: the cache and the search on rank 0, the simulations on both.
+    const auto two = dir / "two-ranks";
+    const auto m = run_command(mpirun(2) + calibrate + " --out " + two.string() + " 2>&1");
+    ASSERT_EQ(m.exit_code, 0) << m.output;
+    const std::regex per_rank("evaluations run per rank: ([0-9]+) ([0-9]+) \\(2 ranks");
+    std::smatch match;
+    ASSERT_TRUE(std::regex_search(m.output, match, per_rank)) << m.output;
+    EXPECT_GT(std::stoi(match[1]), 0) << m.output;
+    EXPECT_GT(std::stoi(match[2]), 0) << m.output;
+    EXPECT_EQ(calibration_results(one), calibration_results(two));
+    // calibrated.toml's first line is the command, which names the output folder.
+    const auto config_part = [](const fs::path& d) {
+        const auto text = file_text(d / "calibrated.toml");
+        return text.substr(text.find('\n'));
+    };
+    EXPECT_EQ(config_part(one), config_part(two));
+    EXPECT_EQ(evaluations_without_times(one), evaluations_without_times(two));
+    EXPECT_NE(file_text(two / "calibration.toml").find("simulations = 14\n"), std::string::npos);
+
+    // Run again on two ranks: everything from rank 0's cache, nothing handed out.
+    const auto again = run_command(mpirun(2) + calibrate + " --out " + two.string() + " 2>&1");
+    ASSERT_EQ(again.exit_code, 0) << again.output;
+    EXPECT_NE(again.output.find("evaluations run per rank: 0 0 (2 ranks"), std::string::npos)
+        << again.output;
+    EXPECT_EQ(calibration_results(one), calibration_results(two));
+}
+
 }  // namespace
