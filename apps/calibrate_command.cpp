@@ -155,6 +155,7 @@ int run(const CalibrateArgs& args) {
                 std::cout << result.best.values[j] << '\n';
             }
         }
+        for (const auto& w : result.warnings) std::cout << "  warning: " << w << '\n';
         std::cout << "report: " << (out_dir / "report.md").string() << '\n';
         return 0;
     } catch (const config::ConfigException& e) {

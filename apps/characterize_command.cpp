@@ -4,12 +4,16 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
+#include <thread>
 
 #include "bench/characterization.hpp"
 #include "config/errors.hpp"
 #include "core/text_file.hpp"
 #include "dem/solver.hpp"
+#include "distributed/rounds.hpp"
+#include "distributed/session.hpp"
 #include "identification/file_error.hpp"
 #include "load_config.hpp"
 
@@ -37,9 +41,35 @@ std::string list_text(const std::vector<double>& values) {
     return out.str();
 }
 
+/// A rank other than 0: runs the grid's runs rank 0 hands out; rank 0 reports everything else.
+int serve(distributed::Session& session, bench::CharacterizationWorker& worker, int threads) {
+    try {
+        distributed::serve_rounds(
+            *session.transport(), 1,
+            [&worker](const std::string& run, int /*threads*/) { return worker.run(run); },
+            threads);
+        return 0;
+    } catch (const std::exception& e) {
+        std::cerr << "shakerbench characterize (" << session.describe() << "): " << e.what()
+                  << '\n';
+        session.abort(config::kExitFailure);  // rank 0 would wait for this rank forever
+    }
+}
+
 int run(const CharacterizeArgs& args) {
+    std::optional<distributed::Session> session;
+    try {
+        session.emplace();
+    } catch (const std::exception& e) {
+        std::cerr << "shakerbench characterize: " << e.what() << '\n';
+        return config::kExitBadInput;
+    }
+    const bool root = session->rank() == 0;
+    // Every rank reads the config (the same file); rank 0 alone reports what is wrong with it.
+    std::ostringstream silenced;
+    std::ostream& errors = root ? std::cerr : silenced;
     int exit_code = 0;
-    const auto config = load_config_or_report(args.config, args.overrides, exit_code);
+    const auto config = load_config_or_report(args.config, args.overrides, exit_code, errors);
     if (!config) return exit_code;
     const std::filesystem::path out_dir =
         args.out_dir.empty() ? std::filesystem::path("out") / (config->name + "-characterization")
@@ -53,11 +83,53 @@ int run(const CharacterizeArgs& args) {
     options.steady = args.steady;
     options.threads = args.threads;
     options.command_line = args.command_line;
-    if (!args.quiet) {
+    if (!args.quiet && root) {
         options.progress = [](const std::string& line) { std::cerr << line << '\n' << std::flush; };
+    }
+    const int threads = args.threads > 0
+                            ? args.threads
+                            : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
+    if (session->size() > 1 && !args.quiet) {
+        // One write per line: the ranks share mpirun's stderr.
+        std::cerr << session->describe() + ", " + std::to_string(threads) + " runs at a time\n"
+                  << std::flush;
+    }
+    // Over several ranks every rank plans the grid (and rank 0 reports a config it cannot
+    // characterise, the others end quietly with the same code).
+    std::optional<bench::CharacterizationWorker> worker;
+    if (session->size() > 1) {
+        try {
+            worker.emplace(*config, options);
+        } catch (const config::ConfigException& e) {
+            errors << e.what() << "\nshakerbench characterize: nothing was characterised.\n";
+            return config::kExitBadInput;
+        } catch (const std::exception& e) {
+            errors << "shakerbench characterize: " << e.what() << '\n';
+            return config::kExitFailure;
+        }
+    }
+    if (!root) return serve(*session, *worker, threads);
+    // Each run of the grid (a point on one filling) goes to whichever rank's thread is free;
+    // every rank settles the beds its runs need. Declared after the session: it releases the
+    // other ranks however the characterisation ends.
+    distributed::DistributedRounds rounds(
+        session->transport(), 1,
+        [&worker](const std::string& run, int /*threads*/) { return worker->run(run); }, threads);
+    if (session->size() > 1) {
+        options.remote = [&rounds](const std::vector<std::string>& runs) {
+            return rounds.run(runs);
+        };
     }
     try {
         const bench::CharacterizeResult result = bench::characterize(*config, options);
+        rounds.finish();
+        if (session->size() > 1 && !args.quiet) {
+            std::string line = "runs per rank:";
+            for (const int n : rounds.evaluations_per_rank()) line += ' ' + std::to_string(n);
+            line += " (" + std::to_string(session->size()) + " ranks x " + std::to_string(threads) +
+                    " runs at a time)\n";
+            std::cerr << line << std::flush;
+        }
         std::filesystem::create_directories(out_dir);
         const auto file = out_dir / "characterization.csv";
         write_file_atomically(file, bench::characterization_csv_text(result.table));

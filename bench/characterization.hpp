@@ -8,6 +8,9 @@
 #include <Eigen/Core>
 #include <complex>
 #include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -98,6 +101,10 @@ struct CharacterizeOptions {
     /// Receives progress lines; empty: none.
     std::function<void(const std::string&)> progress;
     std::string command_line;  ///< for the file's header
+    /// Runs the grid in other processes (MPI ranks; distributed/rounds.hpp): given each run's
+    /// number as text, returns each one's result as text (CharacterizationWorker::run's
+    /// output), in order. Empty: this process's threads run it.
+    std::function<std::vector<std::string>(const std::vector<std::string>& run_numbers)> remote;
 };
 
 struct CharacterizeResult {
@@ -106,6 +113,31 @@ struct CharacterizeResult {
     int unsettled_runs = 0;  ///< of them, not steady within the budget
     long long periods = 0;   ///< simulated in all
     double wall_time_s = 0.0;
+};
+
+struct CharacterizationGrid;
+
+/// Another process's side of a distributed characterisation: the same config and options
+/// plan the same runs; each run's bed is settled once per process, then the run measured.
+class CharacterizationWorker {
+  public:
+    /// Throws what characterize throws for a config or options it cannot characterise.
+    CharacterizationWorker(const CampaignConfig& config, CharacterizeOptions options);
+    ~CharacterizationWorker();
+    CharacterizationWorker(const CharacterizationWorker&) = delete;
+    CharacterizationWorker& operator=(const CharacterizationWorker&) = delete;
+    /// Runs run number `run_number` and returns its result as exact text; several threads may
+    /// call it at once. Throws
+    /// std::invalid_argument for a number that names no run, dem::SimulationError when a DEM
+    /// guard fires.
+    std::string run(const std::string& run_number);
+
+  private:
+    const CampaignConfig& config_;
+    CharacterizeOptions options_;
+    std::unique_ptr<CharacterizationGrid> grid_;
+    std::mutex mutex_;
+    std::map<std::size_t, std::shared_ptr<const dem::ParticleSet>> beds_;
 };
 
 /// Characterises every damper of `config` whose model is not rigid, in every selected

@@ -198,6 +198,16 @@ CalibrationResult calibrate(const bench::CampaignConfig& config, const Measureme
     result.history = evaluator.history();
     result.simulations = evaluator.simulations();
     result.calibrated = with_values(config, free, result.best.values);
+    if (result.best.misfit > result.start.misfit) {
+        // The emulator's minimum, simulated, fits worse than the start: single simulations
+        // scatter more than the free values move them (the bed's fillings), so neither point
+        // is better than the other within that scatter.
+        result.warnings.push_back(
+            "the calibrated values, simulated, fit worse than the start (misfit " +
+            std::to_string(result.best.misfit) + " against " + std::to_string(result.start.misfit) +
+            "): the simulations scatter more than the free values move them; more fillings "
+            "per evaluation (campaign.seeds) or other levels are needed");
+    }
     for (auto& f : result.findings) {
         for (std::size_t j = 0; j < free.size(); ++j) {
             if (free[j].path == f.parameter.path) f.value = result.best.values[j];

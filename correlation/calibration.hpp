@@ -58,6 +58,8 @@ struct CalibrationResult {
     std::vector<ParameterFinding> findings;  ///< per free parameter
     /// Why the findings are missing (too few successful evaluations); empty when they exist.
     std::string findings_note;
+    /// What the user must know about the answer (it fits worse than the start, ...).
+    std::vector<std::string> warnings;
     std::vector<LevelFit> levels;
     int simulations = 0;  ///< evaluations simulated, not taken from the cache
     double wall_time_s = 0.0;

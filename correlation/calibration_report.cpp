@@ -79,6 +79,13 @@ std::string calibration_toml(const CalibrationResult& r, const Measurement& m,
         << "features = " << m.features.size() << '\n'
         << "calibrated_config = \"calibrated.toml\"\n";
     if (!r.findings_note.empty()) out << "note = " << toml_string(r.findings_note) << '\n';
+    if (!r.warnings.empty()) {
+        out << "warnings = [";
+        for (std::size_t i = 0; i < r.warnings.size(); ++i) {
+            out << (i ? ", " : "") << toml_string(r.warnings[i]);
+        }
+        out << "]\n";
+    }
     for (std::size_t j = 0; j < r.free.size(); ++j) {
         const auto& p = r.free[j];
         out << "\n[[parameters]]\n"
@@ -155,6 +162,7 @@ std::string report_md(const CalibrationResult& r, const Measurement& m,
     out << '\n';
     for (const auto& f : r.findings) out << "- `" << f.parameter.path << "`: " << f.reason << ".\n";
     if (!r.findings_note.empty()) out << "- " << r.findings_note << '\n';
+    for (const auto& w : r.warnings) out << "- **Warning**: " << w << ".\n";
     if (!r.findings.empty()) {
         out << "\n## Which levels inform which parameter\n\n"
             << "Share of each parameter's Fisher information (the squared sensitivities of the "

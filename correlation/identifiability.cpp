@@ -179,13 +179,32 @@ std::vector<ParameterFinding> assess_identifiability(const FeatureEmulator& emul
         f.hi95 = free[j].lo + ends[1] * (free[j].hi - free[j].lo);
         const double width = free[j].hi - free[j].lo;
         const double share = (f.hi95 - f.lo95) / width;
-        f.identifiable = share <= kIdentifiableShare;
-        f.reason = f.identifiable
-                       ? "the data confine it to [" + text(f.lo95) + ", " + text(f.hi95) +
-                             "] (95 %), " + text(100.0 * share) + " % of its search interval"
-                       : "the data cannot identify it: values from " + text(f.lo95) + " to " +
-                             text(f.hi95) + " (" + text(100.0 * share) +
-                             " % of its search interval) fit as well within the uncertainty";
+        // An interval that reaches an end of the search interval is a bound, not a value: the
+        // data do not exclude that end (nor, perhaps, what lies beyond it).
+        const bool at_an_end = ends[0] <= kAtAnEnd || ends[1] >= 1.0 - kAtAnEnd;
+        const double value = free[j].lo + best_u[j] * width;
+        const double relative = value != 0.0 ? 0.5 * (f.hi95 - f.lo95) / std::abs(value)
+                                             : std::numeric_limits<double>::infinity();
+        f.identifiable =
+            share <= kIdentifiableShare && !at_an_end && relative <= kIdentifiableRelative;
+        if (f.identifiable) {
+            f.reason = "the data confine it to [" + text(f.lo95) + ", " + text(f.hi95) +
+                       "] (95 %), " + text(100.0 * share) + " % of its search interval";
+        } else if (share <= kIdentifiableShare && !at_an_end) {
+            f.reason = "the data only loosely bound it: values from " + text(f.lo95) + " to " +
+                       text(f.hi95) + " fit within the uncertainty, ±" + text(100.0 * relative) +
+                       " % about " + text(value) + " (more than ±" +
+                       text(100.0 * kIdentifiableRelative) + " %), so no value is given";
+        } else if (share <= kIdentifiableShare) {
+            f.reason = "the data only bound it: values from " + text(f.lo95) + " to " +
+                       text(f.hi95) + " fit within the uncertainty, and the interval reaches " +
+                       (ends[0] <= kAtAnEnd ? "the lower" : "the upper") +
+                       " end of its search interval, so no value is given";
+        } else {
+            f.reason = "the data cannot identify it: values from " + text(f.lo95) + " to " +
+                       text(f.hi95) + " (" + text(100.0 * share) +
+                       " % of its search interval) fit as well within the uncertainty";
+        }
 
         // Which levels inform it: the Fisher information J_kj² split by level.
         f.information_share.assign(measurement.selection.sweeps.size(), 0.0);

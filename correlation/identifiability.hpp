@@ -36,6 +36,12 @@ inline constexpr double kProfileThreshold = 1.92;
 /// A parameter whose 95 % interval covers more than this share of its search interval is
 /// reported as not identifiable [-].
 inline constexpr double kIdentifiableShare = 0.5;
+/// A parameter whose 95 % interval's half-width exceeds this share of its calibrated value is
+/// reported as not identifiable: the data bound it only loosely [-].
+inline constexpr double kIdentifiableRelative = 0.25;
+/// A 95 % interval that reaches within this share of an end of the search interval is a
+/// bound, not an identification: reported as not identifiable, with the bound [-].
+inline constexpr double kAtAnEnd = 1e-3;
 
 /// The findings for every free parameter at the calibrated unit-cube point `best_u`.
 std::vector<ParameterFinding> assess_identifiability(const FeatureEmulator& emulator,

@@ -3,116 +3,93 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "correlation/emulator.hpp"
+#include "correlation/gaussian_process.hpp"
 
 namespace sb::correlation {
 namespace {
 
-/// Distance in the unit cube over which a coupled point informs the discrepancy's slopes: its
-/// weight exp(-½ (r / scale)²) [-]. Two stencil steps: a stencil around an earlier centre
-/// still counts when the answer moved little, hardly when it moved far.
-constexpr double kDiscrepancyScale = 2.0 * kTwoFidelityStep;
-
-/// The discrepancy high − low of each feature as an affine function of the unit-cube point,
-/// c + g·(u − centre): c the discrepancy at the centre, g fitted by weighted least squares to
-/// the other coupled points (none where they do not span every direction), and the scatter
-/// of the coupled means it carries.
+/// The discrepancy coupled − predicted of each feature over the unit cube (Kennedy and
+/// O'Hagan 2001, §4.3): a Gaussian process on the coupled points' differences from the
+/// prediction's emulated mean, its nugget the coupled values' own scatter (their fillings),
+/// so it passes through deterministic coupled values and smooths a DEM's jitter. It carries
+/// the slopes where the coupled points resolve them (a stencil's central differences) and
+/// tends to their mean away from them. With fewer than 3 coupled points: their mean.
 struct Discrepancy {
+    std::vector<std::optional<GaussianProcess>> process;
     std::vector<double> constant;
-    std::vector<Eigen::VectorXd> slope;
-    std::vector<double> sigma;
-    std::vector<double> centre;
+    std::vector<double> sigma;  ///< the coupled values' scatter
 
     [[nodiscard]] double at(std::size_t feature, const std::vector<double>& u) const {
-        double v = constant[feature];
-        for (std::size_t j = 0; j < centre.size(); ++j) {
-            v += slope[feature](static_cast<Eigen::Index>(j)) * (u[j] - centre[j]);
-        }
-        return v;
+        if (!process[feature]) return constant[feature];
+        return process[feature]
+            ->predict(
+                Eigen::Map<const Eigen::VectorXd>(u.data(), static_cast<Eigen::Index>(u.size())))
+            .mean;
     }
 };
 
 Discrepancy fit_discrepancy(const FeatureEmulator& low, std::size_t features,
                             const std::vector<FreeParameter>& free,
-                            const std::vector<Evaluation>& high_points,
-                            const std::vector<double>& centre) {
+                            const std::vector<Evaluation>& high_points) {
     const auto d = static_cast<Eigen::Index>(free.size());
     Discrepancy delta;
-    delta.centre = centre;
+    delta.process.resize(features);
     delta.constant.assign(features, 0.0);
-    delta.slope.assign(features, Eigen::VectorXd::Zero(d));
     delta.sigma.assign(features, 0.0);
-    // Per coupled point: its unit-cube place, weight and the low fidelity's emulated mean.
+    // Per distinct coupled point: its unit-cube place and the prediction's emulated mean.
     struct Point {
         std::vector<double> u;
-        double weight;
         std::vector<double> low_mean;
         const Evaluation* high;
     };
     std::vector<Point> points;
     for (const auto& e : high_points) {
         if (!e.error.empty() || e.simulated.value.size() != features) continue;
-        Point p{to_unit(free, e.values), 0.0, {}, &e};
-        double r2 = 0.0;
-        for (Eigen::Index j = 0; j < d; ++j) r2 += std::pow(p.u[j] - centre[j], 2);
-        p.weight = std::exp(-0.5 * r2 / (kDiscrepancyScale * kDiscrepancyScale));
+        const bool seen = std::any_of(points.begin(), points.end(),
+                                      [&](const Point& p) { return p.high->key == e.key; });
+        if (seen) continue;
+        Point p{to_unit(free, e.values), {}, &e};
         std::vector<double> variance;
         low.predict(p.u, p.low_mean, variance);
         points.push_back(std::move(p));
     }
     for (std::size_t i = 0; i < features; ++i) {
         std::vector<const Point*> used;
+        double sigma2 = 0.0;
         for (const auto& p : points) {
             if (std::isfinite(p.high->simulated.value[i]) && std::isfinite(p.low_mean[i])) {
                 used.push_back(&p);
+                sigma2 += std::pow(p.high->simulated.sigma[i], 2);
             }
         }
         if (used.empty()) continue;
-        double sigma2 = 0.0;
-        double weights = 0.0;
-        for (const Point* p : used) {
-            sigma2 += p->weight * std::pow(p->high->simulated.sigma[i], 2);
-            weights += p->weight;
-        }
-        delta.sigma[i] = weights > 0.0 ? std::sqrt(sigma2 / weights) : 0.0;
-        // Through the coupled value at the centre when it was simulated (the corrected model
-        // then equals the coupled one there: zeroth-order consistency), else a weighted mean.
-        const Point* at_centre = nullptr;
-        for (const Point* p : used) {
-            double r2 = 0.0;
-            for (Eigen::Index j = 0; j < d; ++j) r2 += std::pow(p->u[j] - centre[j], 2);
-            if (r2 < 1e-18) at_centre = p;
-        }
-        double sum = 0.0;
-        double wsum = 0.0;
-        for (const Point* p : used) {
-            sum += p->weight * (p->high->simulated.value[i] - p->low_mean[i]);
-            wsum += p->weight;
-        }
-        delta.constant[i] = at_centre != nullptr
-                                ? at_centre->high->simulated.value[i] - at_centre->low_mean[i]
-                                : sum / wsum;
-        // The slopes by weighted least squares on the other points (first-order consistency:
-        // central differences over a stencil); none when they do not span every direction.
-        std::vector<const Point*> others;
-        for (const Point* p : used) {
-            if (p != at_centre) others.push_back(p);
-        }
-        const auto n = static_cast<Eigen::Index>(others.size());
-        if (n < d) continue;
-        Eigen::MatrixXd a(n, d);
-        Eigen::VectorXd b(n);
+        const auto n = static_cast<Eigen::Index>(used.size());
+        delta.sigma[i] = std::sqrt(sigma2 / static_cast<double>(n));
+        Eigen::MatrixXd x(n, d);
+        Eigen::VectorXd y(n);
         for (Eigen::Index k = 0; k < n; ++k) {
-            const Point& p = *others[static_cast<std::size_t>(k)];
-            const double w = std::sqrt(p.weight);
-            for (Eigen::Index j = 0; j < d; ++j) a(k, j) = w * (p.u[j] - centre[j]);
-            b(k) = w * (p.high->simulated.value[i] - p.low_mean[i] - delta.constant[i]);
+            const Point& p = *used[static_cast<std::size_t>(k)];
+            for (Eigen::Index j = 0; j < d; ++j) x(k, j) = p.u[static_cast<std::size_t>(j)];
+            y(k) = p.high->simulated.value[i] - p.low_mean[i];
         }
-        Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
-        qr.setThreshold(1e-6);
-        if (qr.rank() == d) delta.slope[i] = qr.solve(b);
+        delta.constant[i] = y.mean();
+        if (n < 3) continue;
+        const double spread = (y.array() - y.mean()).square().sum() / static_cast<double>(n - 1);
+        if (spread <= 0.0) continue;  // a constant discrepancy
+        GpFitOptions options;
+        // The nugget is the coupled values' known scatter (standardised), not fitted: a few
+        // points cannot tell it from the signal.
+        options.noise_variance = std::clamp(sigma2 / static_cast<double>(n) / spread, 1e-8,
+                                            GaussianProcess::kMaxNoiseVariance);
+        try {
+            delta.process[i] = GaussianProcess::fit(x, y, options);
+        } catch (const std::exception&) {
+            // the mean then stands for it
+        }
     }
     return delta;
 }
@@ -171,8 +148,8 @@ TwoFidelityOutcome two_fidelity_search(Evaluator& low, Evaluator& high,
         low.evaluate(batch);
         ++out.corrections;
         const FeatureEmulator low_emulator(low.measurement(), free, low.history());
-        const Discrepancy delta = fit_discrepancy(low_emulator, low.measurement().features.size(),
-                                                  free, high.history(), u);
+        const Discrepancy delta =
+            fit_discrepancy(low_emulator, low.measurement().features.size(), free, high.history());
         out.corrected_history = corrected(low, low.history(), delta);
         const FeatureEmulator corrected_emulator(low.measurement(), free, out.corrected_history);
         const auto next = least_emulated_misfit(corrected_emulator, free, u);

@@ -1,9 +1,9 @@
 // The two-fidelity search of a calibration: the whole search on a cheap simulation (the
 // campaign predicted from the damper's describing functions), then the coupled simulation at
-// the answer and a stencil around it, whose differences from the cheap one correct it (an
-// affine discrepancy per feature: output space mapping with first-order consistency, Alexandrov
-// et al. 1998; Kennedy and O'Hagan 2001), until a correction no longer moves the answer
-// (docs/calibration.md).
+// the answer and a stencil around it, whose differences from the cheap one correct it (a
+// Gaussian-process discrepancy per feature, Kennedy and O'Hagan 2001; with a stencil it gives
+// the correction's slopes too, the first-order consistency of Alexandrov et al. 1998), until
+// a correction no longer moves the answer (docs/calibration.md).
 #pragma once
 
 #include <string>

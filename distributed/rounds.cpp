@@ -2,6 +2,7 @@
 // serve its queue) or that none will; a task fetches its input from rank 0 with a call.
 #include "distributed/rounds.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 #include <thread>
@@ -19,9 +20,9 @@ const std::string kOver = "rounds over";
 /// How long a waiting rank sleeps between looks for rank 0's next message.
 constexpr std::chrono::milliseconds kWait{2};
 
-TaskQueue queue_of(int threads, const TextEvaluation& evaluate) {
+TaskQueue queue_of(int threads, const TextEvaluation& evaluate, int at_once) {
     TaskQueue queue;
-    queue.threads = 1;
+    queue.threads = std::max(1, at_once);
     queue.run = [threads, &evaluate](int task, Link& link) {
         return evaluate(link.call(std::to_string(task)), threads);
     };
@@ -30,10 +31,12 @@ TaskQueue queue_of(int threads, const TextEvaluation& evaluate) {
 
 }  // namespace
 
-DistributedRounds::DistributedRounds(Transport* transport, int threads, TextEvaluation evaluate)
+DistributedRounds::DistributedRounds(Transport* transport, int threads, TextEvaluation evaluate,
+                                     int at_once)
     : transport_(transport),
       threads_(threads),
       evaluate_(std::move(evaluate)),
+      at_once_(at_once),
       per_rank_(transport != nullptr ? transport->size() : 1, 0) {}
 
 DistributedRounds::~DistributedRounds() {
@@ -58,7 +61,7 @@ std::vector<std::string> DistributedRounds::run(const std::vector<std::string>& 
     if (transport_ != nullptr) {
         for (int r = 1; r < transport_->size(); ++r) transport_->send(r, kRound);
     }
-    TaskQueue queue = queue_of(threads_, evaluate_);
+    TaskQueue queue = queue_of(threads_, evaluate_, at_once_);
     queue.task_count = static_cast<int>(inputs.size());
     queue.serve = [&inputs](const std::string& request) {
         const int task = std::stoi(request);
@@ -81,9 +84,9 @@ std::vector<std::string> DistributedRounds::run(const std::vector<std::string>& 
     return results;
 }
 
-int serve_rounds(Transport& transport, int threads, const TextEvaluation& evaluate) {
+int serve_rounds(Transport& transport, int threads, const TextEvaluation& evaluate, int at_once) {
     if (transport.rank() == 0) throw std::logic_error("serve_rounds: rank 0 runs the rounds");
-    const TaskQueue queue = queue_of(threads, evaluate);
+    const TaskQueue queue = queue_of(threads, evaluate, at_once);
     int ran = 0;
     for (;;) {
         auto message = transport.receive();

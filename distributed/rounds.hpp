@@ -13,14 +13,16 @@
 namespace sb::distributed {
 
 /// Evaluates one input (text) with `threads` threads and returns its result (text). An
-/// exception fails that evaluation with its message.
+/// exception fails that evaluation with its message. Called from several threads at once when
+/// a rank evaluates several inputs at a time.
 using TextEvaluation = std::function<std::string(const std::string& input, int threads)>;
 
 /// Rank 0's side (or a process alone, transport null).
 class DistributedRounds {
   public:
-    /// Each rank evaluates one input at a time with `threads` threads.
-    DistributedRounds(Transport* transport, int threads, TextEvaluation evaluate);
+    /// Each rank evaluates `at_once` inputs at a time (on as many threads), each with
+    /// `threads` threads.
+    DistributedRounds(Transport* transport, int threads, TextEvaluation evaluate, int at_once = 1);
     /// Tells the other ranks that there are no more rounds, if finish() was not called.
     ~DistributedRounds();
     DistributedRounds(const DistributedRounds&) = delete;
@@ -38,12 +40,14 @@ class DistributedRounds {
     Transport* transport_;
     int threads_;
     TextEvaluation evaluate_;
+    int at_once_;
     bool finished_ = false;
     std::vector<int> per_rank_;
 };
 
 /// Ranks other than 0: evaluates what rank 0 hands out, round after round, until rank 0
 /// finishes. Returns the number of evaluations this rank ran.
-int serve_rounds(Transport& transport, int threads, const TextEvaluation& evaluate);
+int serve_rounds(Transport& transport, int threads, const TextEvaluation& evaluate,
+                 int at_once = 1);
 
 }  // namespace sb::distributed

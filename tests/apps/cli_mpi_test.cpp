@@ -232,4 +232,36 @@ TEST(CliMpi, TwoRanksShareACalibrationsEvaluationsAndFindWhatOneProcessFinds) {
     EXPECT_EQ(calibration_results(one), calibration_results(two));
 }
 
+/// characterization.csv without its command line (it names the output folder).
+std::string characterization_without_command(const fs::path& dir) {
+    std::istringstream in(file_text(dir / "characterization.csv"));
+    std::string kept;
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("# command = ", 0) != 0) kept += line + "\n";
+    }
+    return kept;
+}
+
+TEST(CliMpi, TwoRanksShareACharacterisationsRunsAndWriteTheTableOfOneProcess) {
+    const auto dir = temp_dir("mpi-characterize-" + std::to_string(getpid()));
+    // The golden 30-particle bed: two frequencies and two fillings at one level, short runs.
+    const std::string characterize =
+        " characterize " + std::string(SB_SOURCE_DIR) +
+        "/tests/bench/golden/small-h0.toml --levels-g 0.5 --frequency-count 2 --seeds 2"
+        " --max-periods 12 --window-periods 3 --transient-periods 1 -j 1";
+    const auto one = dir / "one-process";
+    const auto r = run(characterize.substr(1) + " --out " + one.string() + " -q");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const auto two = dir / "two-ranks";
+    const auto m = run_command(mpirun(2) + characterize + " --out " + two.string() + " 2>&1");
+    ASSERT_EQ(m.exit_code, 0) << m.output;
+    const std::regex per_rank("runs per rank: ([0-9]+) ([0-9]+) \\(2 ranks");
+    std::smatch match;
+    ASSERT_TRUE(std::regex_search(m.output, match, per_rank)) << m.output;
+    EXPECT_EQ(std::stoi(match[1]) + std::stoi(match[2]), 4) << m.output;
+    EXPECT_GT(std::stoi(match[2]), 0) << m.output;
+    EXPECT_EQ(characterization_without_command(one), characterization_without_command(two));
+    EXPECT_NE(characterization_without_command(two).find("\npd,H-0,0.5,"), std::string::npos);
+}
+
 }  // namespace

@@ -1,0 +1,457 @@
+// The characterisation of a config's dampers over its grid: planned once, each run (a grid
+// point on one filling) independent, run on this process's threads or handed to other
+// processes (MPI ranks) one run at a time.
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+
+#include "bench/arrangement.hpp"
+#include "bench/attachment.hpp"
+#include "bench/characterization.hpp"
+#include "bench/resolved_config.hpp"
+#include "config/errors.hpp"
+#include "core/units.hpp"
+#include "dem/setup.hpp"
+
+namespace sb::bench {
+namespace {
+
+std::string number_text(double v) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%.6g", v);
+    return buffer;
+}
+
+/// The settled bed of a damper in its mounting: the campaign's procedure (sweep_runner.cpp),
+/// so that a seed and a level give the campaign's bed.
+dem::ParticleSet settled_bed(const DamperSpec& damper, double stiffness,
+                             const Eigen::Matrix3d& rotation, const Eigen::Vector3d& gravity,
+                             std::uint64_t seed) {
+    dem::SolverOptions local = damper.solver_options(stiffness);
+    local.gravity_m_s2 = rotation.transpose() * gravity;
+    local.track_energy = false;
+    if (damper.fill == DamperSpec::Fill::pour) return dem::pour(local, seed, damper.settle);
+    dem::ParticleSet filled;
+    try {
+        filled = dem::fill_random(local, seed);
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error("damper " + damper.name + ": " + e.what() + " (set dampers." +
+                                 damper.name + ".settle.fill = \"pour\")");
+    }
+    return dem::settle(local, filled, damper.settle);
+}
+
+double mean_of(const std::vector<double>& v) {
+    double s = 0.0;
+    for (double x : v) s += x;
+    return v.empty() ? 0.0 : s / static_cast<double>(v.size());
+}
+
+/// Sample standard deviation (n - 1); 0 for a single value.
+double deviation_of(const std::vector<double>& v) {
+    if (v.size() < 2) return 0.0;
+    const double m = mean_of(v);
+    double s = 0.0;
+    for (double x : v) s += (x - m) * (x - m);
+    return std::sqrt(s / static_cast<double>(v.size() - 1));
+}
+
+config::ConfigError problem(const CampaignConfig& config, std::string key, std::string value,
+                            std::string constraint, std::string meaning) {
+    return {config.source,     0, 0, std::move(key), std::move(value), std::move(constraint),
+            std::move(meaning)};
+}
+
+}  // namespace
+
+/// What characterize() runs: one bed per arrangement, damper, level and seed (the contact
+/// stiffness follows the level, as in the campaign); one run per grid point and seed. Every
+/// process that plans the same config and options gets the same beds and runs in the same
+/// order.
+struct CharacterizationGrid {
+    struct Bed {
+        std::size_t arrangement = 0;
+        const DamperSpec* damper = nullptr;
+        double level_g = 0.0;
+        std::uint64_t seed = 0;
+        dem::ExcitationContact contact;
+    };
+    struct Run {
+        std::size_t bed = 0;
+        double frequency_hz = 0.0;
+        ApparentMassPoint result;
+    };
+    std::vector<double> levels;
+    std::vector<const DamperSpec*> dampers;
+    CampaignPlan plan;
+    std::vector<Bed> beds;
+    std::vector<std::vector<double>> grids;  // per arrangement
+    std::vector<Eigen::Vector3d> rotations;  // per arrangement and damper
+    std::vector<Run> runs;
+
+    [[nodiscard]] std::size_t damper_index(const DamperSpec* d) const {
+        return static_cast<std::size_t>(std::find(dampers.begin(), dampers.end(), d) -
+                                        dampers.begin());
+    }
+};
+
+namespace {
+
+CharacterizationGrid plan_grid(const CampaignConfig& config, const CharacterizeOptions& options) {
+    CharacterizationGrid grid_plan;
+    const CampaignSpec& campaign = config.campaign;
+    std::vector<double>& levels = grid_plan.levels;
+    levels = options.levels_g.empty() ? campaign.levels_g : options.levels_g;
+    std::vector<const DamperSpec*>& dampers = grid_plan.dampers;
+    for (const auto& d : campaign.dampers) {
+        if (d.model != DamperSpec::Model::rigid) dampers.push_back(&d);
+    }
+    std::vector<config::ConfigError> problems;
+    if (levels.empty()) {
+        problems.push_back(problem(config, "campaign.levels_g", "", "is required",
+                                   "levels to characterise [g] (or --levels-g)"));
+    }
+    for (double l : levels) {
+        if (!(l > 0.0 && std::isfinite(l))) {
+            problems.push_back(problem(config, "levels_g", number_text(l), "must be > 0",
+                                       "level to characterise [g]"));
+        }
+    }
+    for (double f : options.frequencies_hz) {
+        if (!(f > 0.0 && std::isfinite(f))) {
+            problems.push_back(problem(config, "frequencies_hz", number_text(f), "must be > 0",
+                                       "frequency to characterise [Hz]"));
+        }
+    }
+    if (dampers.empty()) {
+        problems.push_back(problem(config, "dampers", "", "needs a damper whose model is not rigid",
+                                   "the dampers to characterise"));
+    }
+    if (options.seeds < 1) {
+        problems.push_back(problem(config, "seeds", std::to_string(options.seeds), "must be >= 1",
+                                   "fillings per grid point"));
+    }
+    for (const auto& v : options.steady.validate()) {
+        problems.push_back(problem(config, v.key, v.value, v.constraint, v.meaning));
+    }
+    if (!problems.empty()) throw config::ConfigException(problems);
+
+    grid_plan.plan = plan_campaign(config, Selection::of(config, {}, {levels.front()}));
+    const CampaignPlan& plan = grid_plan.plan;
+    const Eigen::Vector3d direction = config.structure.excitation.direction.normalized();
+
+    auto& beds = grid_plan.beds;
+    auto& grids = grid_plan.grids;
+    auto& rotations = grid_plan.rotations;
+    for (std::size_t a = 0; a < plan.arrangements.size(); ++a) {
+        const PreparedArrangement& prepared = plan.arrangements[a];
+        std::vector<double> grid = options.frequencies_hz;
+        if (grid.empty()) {
+            const auto [lo, hi] =
+                std::minmax_element(prepared.frequencies_hz.begin(), prepared.frequencies_hz.end());
+            if (options.frequency_count > 1) {
+                for (int k = 0; k < options.frequency_count; ++k) {
+                    grid.push_back(*lo + (*hi - *lo) * k / (options.frequency_count - 1));
+                }
+            } else if (options.frequency_count == 1) {
+                grid.push_back(prepared.first_mode_hz);
+            } else {
+                grid = prepared.frequencies_hz;
+            }
+        }
+        std::sort(grid.begin(), grid.end());
+        grids.push_back(grid);
+        for (const DamperSpec* damper : dampers) {
+            rotations.push_back(options.rotation
+                                    ? rotation_per_translation(prepared, damper->point, direction)
+                                    : Eigen::Vector3d::Zero());
+            for (double level : levels) {
+                for (int s = 0; s < options.seeds; ++s) {
+                    CharacterizationGrid::Bed bed;
+                    bed.arrangement = a;
+                    bed.damper = damper;
+                    bed.level_g = level;
+                    bed.seed = campaign.seed + static_cast<std::uint64_t>(s);
+                    bed.contact = dem::choose_contact(
+                        damper->particles, damper->enclosure, damper->contact.normal,
+                        damper->contact.particle_particle.restitution,
+                        damper->contact.normal_stiffness, damper->contact.max_overlap_fraction,
+                        damper->contact.time_step_fraction, std::sqrt(2.0) * g_to_m_s2(level),
+                        prepared.first_mode_hz);
+                    beds.push_back(std::move(bed));
+                }
+            }
+        }
+    }
+    for (std::size_t b = 0; b < beds.size(); ++b) {
+        for (double f : grids[beds[b].arrangement]) grid_plan.runs.push_back({b, f, {}});
+    }
+
+    return grid_plan;
+}
+
+/// The settled bed of bed `b` of the grid.
+dem::ParticleSet settle(const CharacterizationGrid& grid, std::size_t b) {
+    const auto& bed = grid.beds[b];
+    const auto& arrangement = grid.plan.arrangements[bed.arrangement].arrangement;
+    const DamperMounting mounting = damper_mounting(arrangement, *bed.damper);
+    return settled_bed(*bed.damper, bed.contact.stiffness, mounting.rotation,
+                       arrangement_gravity(arrangement), bed.seed);
+}
+
+/// Run `r` of the grid on its settled bed.
+ApparentMassPoint measure(const CampaignConfig& config, const CharacterizeOptions& options,
+                          const CharacterizationGrid& grid, std::size_t r,
+                          const dem::ParticleSet& particles) {
+    const Eigen::Vector3d direction = config.structure.excitation.direction.normalized();
+    const auto& run = grid.runs[r];
+    const auto& bed = grid.beds[run.bed];
+    const PreparedArrangement& prepared = grid.plan.arrangements[bed.arrangement];
+    const DamperMounting mounting = damper_mounting(prepared.arrangement, *bed.damper);
+    EnclosureSetup setup;
+    setup.options = bed.damper->solver_options(bed.contact.stiffness);
+    setup.options.gravity_m_s2 = arrangement_gravity(prepared.arrangement);
+    if (bed.damper->locked) setup.options.lock.fraction = 1.0;
+    setup.mount_rotation = mounting.rotation;
+    setup.offset_m = mounting.origin_m;
+    setup.bed = particles;
+    const auto& frequencies = grid.grids[bed.arrangement];
+    setup.dt_max_s = std::min(bed.contact.time_step_s, 1.0 / (256.0 * frequencies.front()));
+    HarmonicDrive drive;
+    drive.direction = direction;
+    drive.rotation_per_translation_rad_m =
+        grid.rotations[bed.arrangement * grid.dampers.size() + grid.damper_index(bed.damper)];
+    drive.acceleration_m_s2 = std::sqrt(2.0) * g_to_m_s2(bed.level_g);
+    drive.frequency_hz = run.frequency_hz;
+    return measure_apparent_mass(setup, drive, options.steady);
+}
+
+/// A run's result as exact text (hexadecimal floats), and back.
+std::string point_text(const ApparentMassPoint& m) {
+    std::ostringstream out;
+    char buffer[64];
+    for (const double v : {m.apparent_mass_kg.real(), m.apparent_mass_kg.imag(), m.power_w,
+                           m.h2_ratio, m.h3_ratio, m.kinetic_j, m.bed_mass_kg}) {
+        std::snprintf(buffer, sizeof buffer, "%a", v);
+        out << buffer << ' ';
+    }
+    out << m.periods << ' ' << (m.settled ? 1 : 0) << ' ' << m.steps_per_period;
+    return out.str();
+}
+
+ApparentMassPoint parse_point(const std::string& text) {
+    std::istringstream in(text);
+    std::string field[7];
+    ApparentMassPoint m;
+    int settled = 0;
+    for (auto& f : field) in >> f;
+    in >> m.periods >> settled >> m.steps_per_period;
+    if (!in) throw std::runtime_error("a characterisation run's result did not read: " + text);
+    const auto number = [](const std::string& f) { return std::strtod(f.c_str(), nullptr); };
+    m.apparent_mass_kg = {number(field[0]), number(field[1])};
+    m.power_w = number(field[2]);
+    m.h2_ratio = number(field[3]);
+    m.h3_ratio = number(field[4]);
+    m.kinetic_j = number(field[5]);
+    m.bed_mass_kg = number(field[6]);
+    m.settled = settled != 0;
+    return m;
+}
+
+void report(const CharacterizeOptions& options, const CharacterizationGrid& grid, std::size_t r,
+            int done) {
+    if (!options.progress) return;
+    const auto& run = grid.runs[r];
+    const auto& bed = grid.beds[run.bed];
+    const PreparedArrangement& prepared = grid.plan.arrangements[bed.arrangement];
+    std::ostringstream line;
+    const auto m = run.result.apparent_mass_kg;
+    line << '[' << done << '/' << grid.runs.size() << "] " << prepared.arrangement.name << ' '
+         << bed.damper->name << ' ' << number_text(bed.level_g) << " g "
+         << number_text(run.frequency_hz) << " Hz seed " << bed.seed
+         << ": M = " << number_text(m.real()) << (m.imag() < 0 ? " - " : " + ")
+         << number_text(std::abs(m.imag())) << "i kg, P = " << number_text(run.result.power_w)
+         << " W, " << run.result.periods << " periods"
+         << (run.result.settled ? "" : " (not settled)");
+    options.progress(line.str());
+}
+
+/// Every run on this process's threads: the beds settled first, then the runs; the numbers
+/// depend neither on the thread count nor on the order they finish in. No exception leaves a
+/// parallel region.
+void run_here(const CampaignConfig& config, const CharacterizeOptions& options,
+              CharacterizationGrid& grid) {
+    const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+    std::vector<dem::ParticleSet> beds(grid.beds.size());
+    std::vector<std::exception_ptr> errors(std::max(grid.beds.size(), grid.runs.size()));
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+    for (std::size_t b = 0; b < grid.beds.size(); ++b) {
+        try {
+            beds[b] = settle(grid, b);
+        } catch (...) {
+            errors[b] = std::current_exception();
+        }
+    }
+    for (const auto& e : errors) {
+        if (e) std::rethrow_exception(e);
+    }
+    std::mutex progress_mutex;
+    int done = 0;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+    for (std::size_t r = 0; r < grid.runs.size(); ++r) {
+        try {
+            grid.runs[r].result = measure(config, options, grid, r, beds[grid.runs[r].bed]);
+            std::lock_guard<std::mutex> lock(progress_mutex);
+            report(options, grid, r, ++done);
+        } catch (...) {
+            errors[r] = std::current_exception();
+        }
+    }
+    for (const auto& e : errors) {
+        if (e) std::rethrow_exception(e);
+    }
+}
+
+/// Every run handed to options.remote, its number as the input.
+void run_remotely(const CharacterizeOptions& options, CharacterizationGrid& grid) {
+    std::vector<std::string> inputs;
+    for (std::size_t r = 0; r < grid.runs.size(); ++r) inputs.push_back(std::to_string(r));
+    const auto outputs = options.remote(inputs);
+    if (outputs.size() != grid.runs.size()) {
+        throw std::runtime_error("characterisation: " + std::to_string(outputs.size()) +
+                                 " results for " + std::to_string(grid.runs.size()) + " runs");
+    }
+    for (std::size_t r = 0; r < grid.runs.size(); ++r) {
+        grid.runs[r].result = parse_point(outputs[r]);
+        report(options, grid, r, static_cast<int>(r + 1));
+    }
+}
+
+}  // namespace
+
+CharacterizationWorker::CharacterizationWorker(const CampaignConfig& config,
+                                               CharacterizeOptions options)
+    : config_(config),
+      options_(std::move(options)),
+      grid_(std::make_unique<CharacterizationGrid>(plan_grid(config_, options_))) {}
+
+CharacterizationWorker::~CharacterizationWorker() = default;
+
+std::string CharacterizationWorker::run(const std::string& run_text) {
+    char* end = nullptr;
+    const long r = std::strtol(run_text.c_str(), &end, 10);
+    if (end == run_text.c_str() || *end != '\0' || r < 0 ||
+        r >= static_cast<long>(grid_->runs.size())) {
+        throw std::invalid_argument("characterisation: no run " + run_text);
+    }
+    const auto run = static_cast<std::size_t>(r);
+    const std::size_t b = grid_->runs[run].bed;
+    // A process settles each bed it needs once (two threads asking at once may both settle
+    // it: the same bed), and its runs at the other frequencies reuse it.
+    std::shared_ptr<const dem::ParticleSet> bed;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        const auto it = beds_.find(b);
+        if (it != beds_.end()) bed = it->second;
+    }
+    if (!bed) {
+        bed = std::make_shared<const dem::ParticleSet>(settle(*grid_, b));
+        std::lock_guard<std::mutex> lock(mutex_);
+        beds_.emplace(b, bed);
+    }
+    return point_text(measure(config_, options_, *grid_, run, *bed));
+}
+
+CharacterizeResult characterize(const CampaignConfig& config, const CharacterizeOptions& options) {
+    const auto started = std::chrono::steady_clock::now();
+    CharacterizationGrid grid = plan_grid(config, options);
+    if (options.remote) {
+        run_remotely(options, grid);
+    } else {
+        run_here(config, options, grid);
+    }
+    const auto& levels = grid.levels;
+    const auto& dampers = grid.dampers;
+    const auto& plan = grid.plan;
+    const auto& grids = grid.grids;
+    const auto& rotations = grid.rotations;
+    const auto& runs = grid.runs;
+    const auto& beds = grid.beds;
+    const auto damper_index = [&](const DamperSpec* d) { return grid.damper_index(d); };
+
+    CharacterizeResult result;
+    CharacterizationTable& table = result.table;
+    table.config = config.source;
+    table.config_hash = config_hash(config);
+    for (const DamperSpec* d : dampers)
+        table.damper_hashes.emplace_back(d->name, damper_hash(config, d->name));
+    table.command = options.command_line;
+    table.criterion = options.steady.describe();
+    for (std::size_t a = 0; a < plan.arrangements.size(); ++a) {
+        const PreparedArrangement& prepared = plan.arrangements[a];
+        for (const DamperSpec* damper : dampers) {
+            for (double level : levels) {
+                for (double f : grids[a]) {
+                    std::vector<double> re, im, power, h2, h3, kinetic, periods, mass;
+                    bool settled = true;
+                    for (const auto& run : runs) {
+                        const auto& bed = beds[run.bed];
+                        if (bed.arrangement != a || bed.damper != damper || bed.level_g != level ||
+                            run.frequency_hz != f) {
+                            continue;
+                        }
+                        const ApparentMassPoint& m = run.result;
+                        re.push_back(m.apparent_mass_kg.real());
+                        im.push_back(m.apparent_mass_kg.imag());
+                        power.push_back(m.power_w);
+                        h2.push_back(m.h2_ratio);
+                        h3.push_back(m.h3_ratio);
+                        kinetic.push_back(m.kinetic_j);
+                        periods.push_back(m.periods);
+                        mass.push_back(m.bed_mass_kg);
+                        settled = settled && m.settled;
+                        result.periods += m.periods;
+                        result.unsettled_runs += m.settled ? 0 : 1;
+                        ++result.runs;
+                    }
+                    CharacterizationRow row;
+                    row.damper = damper->name;
+                    row.arrangement = prepared.arrangement.name;
+                    row.level_g = level;
+                    row.acceleration_m_s2 = std::sqrt(2.0) * g_to_m_s2(level);
+                    row.frequency_hz = f;
+                    row.bed_mass_kg = mean_of(mass);
+                    row.rotation_per_translation_rad_m =
+                        rotations[a * dampers.size() + damper_index(damper)];
+                    row.seeds = static_cast<int>(re.size());
+                    row.apparent_mass_kg = {mean_of(re), mean_of(im)};
+                    row.apparent_mass_re_std_kg = deviation_of(re);
+                    row.apparent_mass_im_std_kg = deviation_of(im);
+                    row.power_w = mean_of(power);
+                    row.power_std_w = deviation_of(power);
+                    row.h2_ratio = mean_of(h2);
+                    row.h3_ratio = mean_of(h3);
+                    row.kinetic_j = mean_of(kinetic);
+                    row.kinetic_std_j = deviation_of(kinetic);
+                    row.periods = mean_of(periods);
+                    row.settled = settled;
+                    table.rows.push_back(row);
+                }
+            }
+        }
+    }
+    result.wall_time_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    return result;
+}
+
+}  // namespace sb::bench
