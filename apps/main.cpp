@@ -5,6 +5,7 @@
 #include "calibrate_command.hpp"
 #include "characterize_command.hpp"
 #include "config/errors.hpp"
+#include "diagnose_command.hpp"
 #include "identify_command.hpp"
 #include "keys_command.hpp"
 #include "modes_command.hpp"
@@ -31,6 +32,7 @@ int main(int argc, char** argv) {
     sb::apps::register_identify_command(app, exit_code);
     sb::apps::register_keys_command(app, exit_code);
     sb::apps::register_calibrate_command(app, exit_code);
+    sb::apps::register_diagnose_command(app, exit_code);
 
     try {
         app.parse(argc, argv);

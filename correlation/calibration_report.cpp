@@ -9,33 +9,12 @@
 #include "bench/resolved_config.hpp"
 #include "core/text_file.hpp"
 #include "correlation/calibration.hpp"
+#include "correlation/report_text.hpp"
 
 namespace sb::correlation {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// `v` with `digits` significant digits (general) or decimals (fixed); "nan" if not finite.
-std::string num(double v, int digits = 6, bool fixed = false) {
-    if (!std::isfinite(v)) return "nan";
-    std::ostringstream out;
-    if (fixed) out << std::fixed;
-    out << std::setprecision(digits) << v;
-    return out.str();
-}
-
-std::string toml_string(const std::string& s) {
-    std::string out = "\"";
-    for (const char c : s) {
-        if (c == '"' || c == '\\') out += '\\';
-        if (c == '\n') {
-            out += "\\n";
-            continue;
-        }
-        out += c;
-    }
-    return out + "\"";
-}
 
 std::string level_name(const std::string& arrangement, double level_g) {
     return arrangement + " " + num(level_g) + " g";

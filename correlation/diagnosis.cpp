@@ -1,0 +1,160 @@
+#include "correlation/diagnosis.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "core/text_file.hpp"
+#include "correlation/report_text.hpp"
+#include "identification/recording_io.hpp"
+
+namespace sb::correlation {
+namespace {
+
+/// A recording without points (damping.csv alone): its natural frequency and damping per
+/// level, with their fillings' scatter where there is some, else the stated uncertainty.
+std::vector<LevelFeatureValues> from_damping_rows(
+    const std::vector<identification::DampingRow>& rows, const StatedUncertainty& stated) {
+    std::vector<LevelFeatureValues> out;
+    constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+    for (const auto& r : rows) {
+        LevelFeatureValues v{r.arrangement, r.level_g, r.fillings, {}, {}};
+        v.value.fill(kNaN);
+        v.sigma.fill(kNaN);
+        const auto f = static_cast<std::size_t>(LevelFeature::natural_frequency);
+        const auto z = static_cast<std::size_t>(LevelFeature::damping_ratio);
+        const double n = std::max(1, r.fillings);
+        v.value[f] = r.natural_frequency_hz;
+        v.value[z] = r.damping_ratio;
+        v.sigma[f] = std::max(r.natural_frequency_std_hz / std::sqrt(n),
+                              stated.frequency_relative * r.natural_frequency_hz);
+        v.sigma[z] =
+            std::max(r.damping_ratio_std / std::sqrt(n), stated.damping_relative * r.damping_ratio);
+        out.push_back(v);
+    }
+    return out;
+}
+
+bench::CampaignResult run_coupled(const bench::CampaignConfig& config,
+                                  const bench::Selection& selection, int threads) {
+    bench::CampaignContext context;
+    context.threads = threads;
+    context.selection = selection;
+    return bench::run_campaign(config, context);
+}
+
+}  // namespace
+
+DiagnosisResult diagnose(const bench::CampaignConfig& config, const std::filesystem::path& measured,
+                         const DiagnosisOptions& options) {
+    const auto started = std::chrono::steady_clock::now();
+    DiagnosisResult result;
+    result.measurement = read_measurement(measured, options.stated);
+    const auto say = [&](const std::string& line) {
+        if (options.progress) options.progress(line);
+    };
+    // Compare: both on the same level features.
+    if (std::filesystem::exists(measured / "recording.toml")) {
+        const auto recording = identification::read_recording(measured);
+        result.measured = recording.points.empty()
+                              ? from_damping_rows(recording.damping, options.stated)
+                              : level_feature_values(recording, options.stated);
+    } else {
+        result.measured = from_damping_rows(result.measurement.damping, options.stated);
+    }
+    say("simulating the baseline on the measured points (" +
+        std::to_string(result.measurement.selection.sweeps.size()) + " sweeps)");
+    const auto simulate =
+        options.calibration.simulate ? options.calibration.simulate : Simulation(run_coupled);
+    const bench::CampaignResult baseline =
+        simulate(config, result.measurement.selection, options.calibration.threads);
+    result.simulated = level_feature_values(baseline.recording, options.stated);
+
+    // Locate: the features beyond the noise and their scaling with the level.
+    result.mismatches = locate_mismatch(result.measured, result.simulated);
+    for (const auto& m : result.mismatches) say(m.sentence);
+    for (const auto& parameter : options.drift) {
+        say("calibrating " + parameter.path + " level by level");
+        result.drifts.push_back(
+            drift_test(config, result.measurement, parameter, options.calibration));
+        say(result.drifts.back().sentence);
+    }
+
+    std::vector<std::string> what;
+    for (const auto& m : result.mismatches) {
+        if (m.beyond_noise) what.push_back(m.arrangement + " " + level_feature_name(m.feature));
+    }
+    for (const auto& d : result.drifts) {
+        if (d.drifts) what.push_back(d.parameter.path + " drifts with the level");
+    }
+    result.mismatch = !what.empty();
+    if (!result.mismatch) {
+        result.verdict = "no significant mismatch";
+    } else {
+        std::string list;
+        for (std::size_t i = 0; i < what.size(); ++i) list += (i ? "; " : "") + what[i];
+        result.verdict = "mismatch beyond the noise: " + list;
+    }
+    result.wall_time_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    return result;
+}
+
+void write_diagnosis(const std::filesystem::path& out_dir, const DiagnosisResult& r,
+                     const std::string& command_line) {
+    std::ostringstream t;
+    t << "# shakerbench diagnose: where the simulation and the measurement disagree\n"
+      << "# (docs/diagnosis.md).\n[diagnosis]\n"
+      << "command = " << toml_string(command_line) << '\n'
+      << "measured = " << toml_string(r.measurement.directory.string()) << '\n'
+      << "mismatch = " << (r.mismatch ? "true" : "false") << '\n'
+      << "verdict = " << toml_string(r.verdict) << '\n'
+      << "wall_time_s = " << num(r.wall_time_s, 1, true) << '\n';
+    for (const auto& m : r.mismatches) {
+        t << "\n[[features]]\n"
+          << "arrangement = " << toml_string(m.arrangement) << '\n'
+          << "feature = " << toml_string(level_feature_name(m.feature)) << '\n'
+          << "beyond_noise = " << (m.beyond_noise ? "true" : "false") << '\n'
+          << "chi2 = " << num(m.chi2) << '\n'
+          << "levels_g = [";
+        for (std::size_t k = 0; k < m.residuals.size(); ++k) {
+            t << (k ? ", " : "") << num(m.residuals[k].level, 10);
+        }
+        t << "]\nresidual = [";  // measured − simulated
+        for (std::size_t k = 0; k < m.residuals.size(); ++k) {
+            t << (k ? ", " : "") << num(m.residuals[k].residual, 10);
+        }
+        t << "]\nsigma = [";
+        for (std::size_t k = 0; k < m.residuals.size(); ++k) {
+            t << (k ? ", " : "") << num(m.residuals[k].sigma, 10);
+        }
+        t << "]\nscaling = " << toml_string(scaling_shape_name(m.scaling.front().shape)) << '\n'
+          << "scaling_exponent = " << num(m.scaling.front().exponent) << '\n'
+          << "scaling_coefficient = " << num(m.scaling.front().coefficient) << '\n'
+          << "finding = " << toml_string(m.sentence) << '\n';
+    }
+    for (const auto& d : r.drifts) {
+        t << "\n[[drift]]\n"
+          << "key = " << toml_string(d.parameter.path) << '\n'
+          << "drifts = " << (d.drifts ? "true" : "false") << '\n'
+          << "slope_per_g = " << num(d.slope) << '\n'
+          << "slope_sigma_per_g = " << num(d.slope_sigma) << '\n'
+          << "finding = " << toml_string(d.sentence) << '\n';
+    }
+    std::ostringstream md;
+    md << "# Diagnosis report\n\nCommand: `" << command_line << "`\n\n"
+       << "Measured: `" << r.measurement.directory.string() << "`\n\n"
+       << "**Verdict: " << r.verdict << ".**\n\n## Features per level\n\n";
+    for (const auto& m : r.mismatches) md << "- " << m.sentence << ".\n";
+    if (!r.drifts.empty()) {
+        md << "\n## Values calibrated level by level\n\n";
+        for (const auto& d : r.drifts) md << "- " << d.sentence << ".\n";
+    }
+    md << "\nWhich physics the model left out is not tested yet (docs/diagnosis.md).\n";
+    create_directories_for_writing(out_dir);
+    write_file_atomically(out_dir / "diagnosis.toml", t.str());
+    write_file_atomically(out_dir / "report.md", md.str());
+}
+
+}  // namespace sb::correlation

@@ -1,0 +1,49 @@
+// A diagnosis as far as it goes today (docs/diagnosis.md): the config simulated on exactly
+// what the measurement has, both reduced to the level features, the features that disagree
+// beyond the noise with how they scale with the level, and the drift of values calibrated
+// level by level; a verdict, diagnosis.toml and report.md.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "correlation/calibration.hpp"
+#include "correlation/drift.hpp"
+#include "correlation/mismatch.hpp"
+
+namespace sb::correlation {
+
+struct DiagnosisOptions {
+    StatedUncertainty stated;  ///< of the measured values without repeats
+    /// Values tested for drift (each calibrated level by level); empty: none.
+    std::vector<FreeParameter> drift;
+    /// The drift calibrations' search, threads and cache; its `simulate` (when set) also
+    /// simulates the baseline.
+    CalibrationOptions calibration;
+    std::function<void(const std::string&)> progress;  ///< empty: none
+};
+
+struct DiagnosisResult {
+    Measurement measurement;
+    std::vector<LevelFeatureValues> measured;
+    std::vector<LevelFeatureValues> simulated;
+    std::vector<FeatureMismatch> mismatches;  ///< beyond the noise first
+    std::vector<DriftResult> drifts;
+    bool mismatch = false;  ///< a feature beyond the noise, or a value that drifts
+    std::string verdict;    ///< "no significant mismatch", or what disagrees, in a sentence
+    double wall_time_s = 0.0;
+};
+
+/// Diagnoses `config` against the recording directory `measured`. Throws what
+/// read_measurement, the simulation and calibrate throw.
+DiagnosisResult diagnose(const bench::CampaignConfig& config, const std::filesystem::path& measured,
+                         const DiagnosisOptions& options);
+
+/// Writes diagnosis.toml (verdict, located residuals, drift tests) and report.md into
+/// out_dir. Throws sb::FileWriteError naming a file that cannot be written.
+void write_diagnosis(const std::filesystem::path& out_dir, const DiagnosisResult& result,
+                     const std::string& command_line);
+
+}  // namespace sb::correlation
