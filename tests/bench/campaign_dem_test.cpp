@@ -29,17 +29,20 @@ TEST(Campaign, ARealH0CampaignDampsWellAboveTheEmptyBeam) {
     options.config_text = text;
     options.threads = 2;
     const auto summary = run_campaign(config, options);
-    EXPECT_EQ(summary.points, 21);
-    EXPECT_EQ(summary.converged + summary.limit_cycle + summary.closest, 21);
+    // Seven frequencies at each of three levels, and those the grid refinement adds where a
+    // level's estimates are unresolved (it depends on the fillings' chaotic response, which
+    // differs from one machine's floating-point library to another's).
+    EXPECT_GE(summary.points, 21);
+    EXPECT_EQ(summary.converged + summary.limit_cycle + summary.closest, summary.points);
     // Near resonance at 2-3 g the bed's response takes 15-20 periods to follow an amplitude
     // change, so some points spend their 40-period budget (5 to 6 of 21 observed, most at
     // 3 g); a controller or coupling that failed would leave most of them there, so the bound
     // is a third of the points.
-    constexpr int kMostClosest = 21 / 3;
+    const int kMostClosest = summary.points / 3;
     EXPECT_LE(summary.closest, kMostClosest);
 
     const auto recording = identification::read_recording(options.out_dir);
-    ASSERT_EQ(recording.points.size(), 21u);
+    ASSERT_EQ(recording.points.size(), static_cast<std::size_t>(summary.points));
     const auto acc = recording.channel_index("acc_damper");
     const double tolerance = config.campaign.controller.tolerance;
     // The recorded RMS is over the whole window, the controller's level the mean of the
