@@ -16,6 +16,7 @@
 #include "distributed/session.hpp"
 #include "identification/file_error.hpp"
 #include "load_config.hpp"
+#include "measured_options.hpp"
 
 namespace sb::apps {
 namespace {
@@ -30,9 +31,7 @@ struct CalibrateArgs {
     int characterization_frequencies = 3;
     std::string out_dir;
     int threads = 0;
-    double damping_uncertainty = 0.05;
-    double frequency_uncertainty = 0.002;
-    double frf_uncertainty = 0.05;
+    correlation::StatedUncertainty stated;
     bool quiet = false;
     std::vector<std::string> overrides;
     std::string command_line;
@@ -66,15 +65,11 @@ int run(const CalibrateArgs& args) {
     int exit_code = 0;
     auto config = load_config_or_report(args.config, args.overrides, exit_code, errors);
     if (!config) return exit_code;
-    correlation::StatedUncertainty stated;
-    stated.damping_relative = args.damping_uncertainty;
-    stated.frequency_relative = args.frequency_uncertainty;
-    stated.frf_relative = args.frf_uncertainty;
     try {
         const auto free = args.free.empty()
                               ? correlation::default_free_parameters(*config)
                               : correlation::parse_free_parameters(*config, args.free);
-        const auto measurement = correlation::read_measurement(args.measured, stated);
+        const auto measurement = correlation::read_measurement(args.measured, args.stated);
         const std::filesystem::path out_dir =
             args.out_dir.empty() ? std::filesystem::path("out") / (config->name + "-calibrated")
                                  : std::filesystem::path(args.out_dir);
@@ -207,18 +202,7 @@ void register_calibrate_command(CLI::App& app, int& exit_code) {
                     "output directory (default: out/<campaign name>-calibrated)");
     cmd->add_option("-j,--threads", args->threads, "threads (default: all cores)")
         ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--damping-uncertainty", args->damping_uncertainty,
-                    "relative uncertainty of a measured damping ratio without repeats "
-                    "(default 0.05)")
-        ->check(CLI::PositiveNumber);
-    cmd->add_option("--frequency-uncertainty", args->frequency_uncertainty,
-                    "relative uncertainty of a measured natural frequency without repeats "
-                    "(default 0.002)")
-        ->check(CLI::PositiveNumber);
-    cmd->add_option("--frf-uncertainty", args->frf_uncertainty,
-                    "relative uncertainty of a measured FRF point without repeats, of |H| and "
-                    "of the phase in rad (default 0.05)")
-        ->check(CLI::PositiveNumber);
+    add_uncertainty_options(*cmd, args->stated);
     cmd->add_flag("-q,--quiet", args->quiet, "no progress lines");
     add_set_option(*cmd, args->overrides);
     cmd->callback([args, &exit_code] {

@@ -10,6 +10,7 @@
 #include "correlation/diagnosis.hpp"
 #include "identification/file_error.hpp"
 #include "load_config.hpp"
+#include "measured_options.hpp"
 
 namespace sb::apps {
 namespace {
@@ -21,9 +22,7 @@ struct DiagnoseArgs {
     int budget = 15;
     std::string out_dir;
     int threads = 0;
-    double damping_uncertainty = 0.05;
-    double frequency_uncertainty = 0.002;
-    double frf_uncertainty = 0.05;
+    correlation::StatedUncertainty stated;
     bool quiet = false;
     std::vector<std::string> overrides;
     std::string command_line;
@@ -35,8 +34,7 @@ int run(const DiagnoseArgs& args) {
     if (!config) return exit_code;
     try {
         correlation::DiagnosisOptions options;
-        options.stated = {args.damping_uncertainty, args.frequency_uncertainty,
-                          args.frf_uncertainty};
+        options.stated = args.stated;
         if (!args.drift.empty()) {
             options.drift = correlation::parse_free_parameters(*config, args.drift);
         }
@@ -100,17 +98,7 @@ void register_diagnose_command(CLI::App& app, int& exit_code) {
                     "output directory (default: out/<campaign name>-diagnosis)");
     cmd->add_option("-j,--threads", args->threads, "threads (default: all cores)")
         ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--damping-uncertainty", args->damping_uncertainty,
-                    "relative uncertainty of a measured damping ratio without repeats "
-                    "(default 0.05)")
-        ->check(CLI::PositiveNumber);
-    cmd->add_option("--frequency-uncertainty", args->frequency_uncertainty,
-                    "relative uncertainty of a measured natural frequency without repeats "
-                    "(default 0.002)")
-        ->check(CLI::PositiveNumber);
-    cmd->add_option("--frf-uncertainty", args->frf_uncertainty,
-                    "relative uncertainty of a measured FRF point without repeats (default 0.05)")
-        ->check(CLI::PositiveNumber);
+    add_uncertainty_options(*cmd, args->stated);
     cmd->add_flag("-q,--quiet", args->quiet, "no progress lines");
     add_set_option(*cmd, args->overrides);
     cmd->callback([args, &exit_code] {

@@ -8,6 +8,7 @@
 
 #include "config/errors.hpp"
 #include "correlation/emulator.hpp"
+#include "correlation/space_filling.hpp"
 #include "correlation/two_fidelity.hpp"
 
 namespace sb::correlation {
@@ -15,8 +16,6 @@ namespace {
 
 /// Half-width of the stencil simulated around the emulator's minimum, in the unit cube.
 constexpr double kStencilStep = 0.02;
-
-bool same_level(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(1.0, b); }
 
 double level_misfit(const Evaluation& e, const Measurement& m, const std::string& arrangement,
                     double level_g, int& features) {
@@ -174,13 +173,8 @@ CalibrationResult calibrate(const bench::CampaignConfig& config, const Measureme
             // emulator resolves the misfit's valley there, which the search's points spread
             // over the whole box cannot: the intervals rest on it.
             std::vector<std::vector<double>> points;
-            for (std::size_t j = 0; j < free.size(); ++j) {
-                for (const double sign : {-1.0, 1.0}) {
-                    auto v = u;
-                    v[j] = std::clamp(u[j] + sign * kStencilStep, 0.0, 1.0);
-                    if (v != u) points.push_back(to_values(free, v));
-                }
-            }
+            for (const auto& v : axis_stencil(u, kStencilStep))
+                points.push_back(to_values(free, v));
             evaluator.evaluate(points);
             const FeatureEmulator emulator(measurement, free, evaluator.history());
             u = least_emulated_misfit(emulator, free, u);

@@ -36,14 +36,6 @@ std::vector<LevelFeatureValues> from_damping_rows(
     return out;
 }
 
-bench::CampaignResult run_coupled(const bench::CampaignConfig& config,
-                                  const bench::Selection& selection, int threads) {
-    bench::CampaignContext context;
-    context.threads = threads;
-    context.selection = selection;
-    return bench::run_campaign(config, context);
-}
-
 }  // namespace
 
 DiagnosisResult diagnose(const bench::CampaignConfig& config, const std::filesystem::path& measured,
@@ -65,8 +57,8 @@ DiagnosisResult diagnose(const bench::CampaignConfig& config, const std::filesys
     }
     say("simulating the baseline on the measured points (" +
         std::to_string(result.measurement.selection.sweeps.size()) + " sweeps)");
-    const auto simulate =
-        options.calibration.simulate ? options.calibration.simulate : Simulation(run_coupled);
+    const auto simulate = options.calibration.simulate ? options.calibration.simulate
+                                                       : Simulation(coupled_simulation);
     const bench::CampaignResult baseline =
         simulate(config, result.measurement.selection, options.calibration.threads);
     result.simulated = level_feature_values(baseline.recording, options.stated);

@@ -9,8 +9,6 @@
 namespace sb::correlation {
 namespace {
 
-bool same_level(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(1.0, b); }
-
 std::string number(double v, int digits = 3) {
     char buffer[40];
     std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);

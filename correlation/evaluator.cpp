@@ -42,15 +42,15 @@ std::vector<std::string> split(const std::string& line, char sep) {
     return parts;
 }
 
-bench::CampaignResult run_coupled(const bench::CampaignConfig& config,
-                                  const bench::Selection& selection, int threads) {
+}  // namespace
+
+bench::CampaignResult coupled_simulation(const bench::CampaignConfig& config,
+                                         const bench::Selection& selection, int threads) {
     bench::CampaignContext context;
     context.threads = threads;
     context.selection = selection;
     return bench::run_campaign(config, context);
 }
-
-}  // namespace
 
 std::string stable_hash(const std::string& text) {
     std::uint64_t h = 14695981039346656037ULL;
@@ -147,7 +147,7 @@ Evaluator::Evaluator(bench::CampaignConfig config, std::vector<FreeParameter> fr
       free_(std::move(free)),
       measurement_(std::move(measurement)),
       options_(std::move(options)) {
-    if (!options_.simulate) options_.simulate = run_coupled;
+    if (!options_.simulate) options_.simulate = coupled_simulation;
     // The layout: which points are simulated and which features are compared. Two
     // measurements with the same layout share the cached simulations.
     std::string layout = measurement_.response_channel + "|" + measurement_.damping_method + "\n";

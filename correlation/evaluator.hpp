@@ -104,6 +104,11 @@ class Evaluator {
     int simulations_ = 0;
 };
 
+/// The coupled campaign of `config` on `selection`, in memory and without a checkpoint store:
+/// what an evaluation simulates unless told otherwise.
+bench::CampaignResult coupled_simulation(const bench::CampaignConfig& config,
+                                         const bench::Selection& selection, int threads);
+
 /// An evaluation as text (the cache file's): its key, simulated features, error and time.
 std::string evaluation_text(const Evaluation& evaluation);
 /// Reads evaluation_text's output into `evaluation` (features, error, time, key); false when

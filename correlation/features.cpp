@@ -30,7 +30,6 @@ std::string level_text(double level_g) {
     return buffer;
 }
 
-bool same_level(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(b)); }
 bool same_frequency(double a, double b) { return std::abs(a - b) <= 1e-9 * std::abs(b); }
 
 /// The damping rows of one method, preferring the circle fit (it uses the whole resonance
@@ -289,5 +288,7 @@ double residual(const Feature& feature, double simulated, double simulated_sigma
         std::max(feature.sigma * feature.sigma, seed2 / std::max(1, feature.repeats));
     return difference / std::sqrt(measured2 + simulated_sigma * simulated_sigma);
 }
+
+bool same_level(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(b)); }
 
 }  // namespace sb::correlation

@@ -86,6 +86,9 @@ struct SimulatedFeatures {
 SimulatedFeatures simulated_features(const bench::CampaignResult& result,
                                      const Measurement& measurement);
 
+/// Whether two levels [g] are the same one (as read back from files: equal to 1e-9).
+bool same_level(double a, double b);
+
 /// Residual of one feature in standard deviations: (simulated − measured) / σ, the phase
 /// difference wrapped into (−π, π]. σ² = σm² + σs², σs the simulation's scatter of its mean over
 /// `simulated_fillings` fillings; σm the measured uncertainty, at least the scatter the bed's

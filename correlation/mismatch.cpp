@@ -13,8 +13,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-bool same_level(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(1.0, b); }
-
 std::size_t index(LevelFeature f) { return static_cast<std::size_t>(f); }
 
 std::string number(double v, int digits = 3) {

@@ -51,4 +51,16 @@ std::vector<std::vector<double>> latin_hypercube(int count, int dimensions, std:
     return points;
 }
 
+std::vector<std::vector<double>> axis_stencil(const std::vector<double>& centre, double step) {
+    std::vector<std::vector<double>> points;
+    for (std::size_t j = 0; j < centre.size(); ++j) {
+        for (const double sign : {-1.0, 1.0}) {
+            auto v = centre;
+            v[j] = std::clamp(centre[j] + sign * step, 0.0, 1.0);
+            if (v != centre) points.push_back(v);
+        }
+    }
+    return points;
+}
+
 }  // namespace sb::correlation

@@ -8,6 +8,7 @@
 
 #include "correlation/emulator.hpp"
 #include "correlation/gaussian_process.hpp"
+#include "correlation/space_filling.hpp"
 
 namespace sb::correlation {
 namespace {
@@ -117,13 +118,7 @@ std::vector<Evaluation> corrected(const Evaluator& low, const std::vector<Evalua
 std::vector<std::vector<double>> stencil(const std::vector<FreeParameter>& free,
                                          const std::vector<double>& u) {
     std::vector<std::vector<double>> points{to_values(free, u)};
-    for (std::size_t j = 0; j < u.size(); ++j) {
-        for (const double sign : {-1.0, 1.0}) {
-            auto v = u;
-            v[j] = std::clamp(u[j] + sign * kTwoFidelityStep, 0.0, 1.0);
-            if (v != u) points.push_back(to_values(free, v));
-        }
-    }
+    for (const auto& v : axis_stencil(u, kTwoFidelityStep)) points.push_back(to_values(free, v));
     return points;
 }
 
