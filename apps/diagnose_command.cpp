@@ -1,13 +1,20 @@
 // `shakerbench diagnose`: the config simulated on the measured points, the features that
-// disagree beyond the noise and how they scale with the level, values tested for drift.
+// disagree beyond the noise and how they scale with the level, values tested for drift; under
+// mpirun the baseline's sweeps and the drift calibrations' simulations spread over the ranks.
 #include "diagnose_command.hpp"
 
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <sstream>
+#include <thread>
 
 #include "config/errors.hpp"
 #include "core/text_file.hpp"
 #include "correlation/diagnosis.hpp"
+#include "distributed/campaign.hpp"
+#include "distributed/rounds.hpp"
+#include "distributed/session.hpp"
 #include "identification/file_error.hpp"
 #include "load_config.hpp"
 #include "measured_options.hpp"
@@ -20,6 +27,7 @@ struct DiagnoseArgs {
     std::string measured;
     std::vector<std::string> drift;
     int budget = 15;
+    std::string mode = "direct";
     std::string out_dir;
     int threads = 0;
     correlation::StatedUncertainty stated;
@@ -28,9 +36,38 @@ struct DiagnoseArgs {
     std::string command_line;
 };
 
+/// A rank other than 0: runs the baseline's sweeps, then the drift calibrations' evaluations,
+/// that rank 0 hands out; rank 0 reports everything else.
+int serve(distributed::Session& session, const bench::CampaignConfig& config,
+          const correlation::Measurement& measurement, const correlation::DiagnosisOptions& options,
+          int threads) {
+    try {
+        distributed::serve_campaign(*session.transport(), config, measurement.selection,
+                                    options.calibration.threads);
+        distributed::serve_rounds(*session.transport(), threads,
+                                  correlation::diagnosis_simulator(config, measurement, options));
+        return 0;
+    } catch (const std::exception& e) {
+        std::cerr << "shakerbench diagnose (" << session.describe() << "): " << e.what() << '\n';
+        session.abort(config::kExitFailure);  // rank 0 would wait for this rank forever
+    }
+}
+
 int run(const DiagnoseArgs& args) {
+    std::optional<distributed::Session> session;
+    try {
+        session.emplace();
+    } catch (const std::exception& e) {
+        std::cerr << "shakerbench diagnose: " << e.what() << '\n';
+        return config::kExitBadInput;
+    }
+    const bool root = session->rank() == 0;
+    // Every rank reads the config and the measurement (the same files); rank 0 alone reports
+    // what is wrong with them.
+    std::ostringstream silenced;
+    std::ostream& errors = root ? std::cerr : silenced;
     int exit_code = 0;
-    const auto config = load_config_or_report(args.config, args.overrides, exit_code);
+    const auto config = load_config_or_report(args.config, args.overrides, exit_code, errors);
     if (!config) return exit_code;
     try {
         correlation::DiagnosisOptions options;
@@ -38,19 +75,56 @@ int run(const DiagnoseArgs& args) {
         if (!args.drift.empty()) {
             options.drift = correlation::parse_free_parameters(*config, args.drift);
         }
+        const auto measurement = correlation::read_measurement(args.measured, args.stated);
         const std::filesystem::path out_dir =
             args.out_dir.empty() ? std::filesystem::path("out") / (config->name + "-diagnosis")
                                  : std::filesystem::path(args.out_dir);
         options.calibration.search.budget = args.budget;
+        options.calibration.search.mode = args.mode == "surrogate"
+                                              ? correlation::SearchMode::surrogate
+                                              : correlation::SearchMode::direct;
         options.calibration.threads = args.threads;
         options.calibration.cache_dir = out_dir / "cache";
+        const int threads =
+            args.threads > 0 ? args.threads
+                             : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
+        if (session->size() > 1 && !args.quiet) {
+            // One write per line: the ranks share mpirun's stderr.
+            std::cerr << session->describe() + ", " + std::to_string(threads) + " threads\n"
+                      << std::flush;
+        }
+        if (!root) return serve(*session, *config, measurement, options, threads);
+        // Rank 0 owns the store of the baseline, the drift searches and their cache; sweeps and
+        // evaluations run on whichever rank is free. Both are declared after the session (they
+        // release the other ranks however the diagnosis ends), the sweeps' last: the other
+        // ranks serve the baseline first, then the rounds.
+        distributed::DistributedRounds rounds(
+            session->transport(), threads,
+            correlation::diagnosis_simulator(*config, measurement, options));
+        distributed::DistributedSweeps sweeps(session->transport(), args.threads);
+        if (session->size() > 1) {
+            options.baseline_executor = &sweeps;
+            options.remote = [&rounds](const std::vector<std::string>& inputs) {
+                return rounds.run(inputs);
+            };
+        }
         if (!args.quiet) {
             options.progress = [](const std::string& line) {
                 std::cerr << line << '\n' << std::flush;
             };
         }
         const auto result = correlation::diagnose(*config, args.measured, options);
+        rounds.finish();
         correlation::write_diagnosis(out_dir, result, args.command_line);
+        if (session->size() > 1 && !args.quiet) {
+            std::string line = "sweeps run per rank:";
+            for (const int n : sweeps.sweeps_per_rank()) line += ' ' + std::to_string(n);
+            line += "; evaluations run per rank:";
+            for (const int n : rounds.evaluations_per_rank()) line += ' ' + std::to_string(n);
+            line += " (" + std::to_string(session->size()) + " ranks x " + std::to_string(threads) +
+                    " threads)\n";
+            std::cerr << line << std::flush;
+        }
         std::cout << "diagnosis " << config->name << ": " << result.verdict << '\n';
         for (const auto& m : result.mismatches) {
             if (m.beyond_noise) std::cout << "  " << m.sentence << '\n';
@@ -59,16 +133,16 @@ int run(const DiagnoseArgs& args) {
         std::cout << "report: " << (out_dir / "report.md").string() << '\n';
         return 0;
     } catch (const config::ConfigException& e) {
-        std::cerr << e.what() << "\nshakerbench diagnose: nothing was simulated.\n";
+        errors << e.what() << "\nshakerbench diagnose: nothing was simulated.\n";
         return config::kExitBadInput;
     } catch (const identification::FileError& e) {
-        std::cerr << "shakerbench diagnose: " << e.what() << '\n';
+        errors << "shakerbench diagnose: " << e.what() << '\n';
         return config::kExitBadInput;
     } catch (const std::invalid_argument& e) {
-        std::cerr << "shakerbench diagnose: " << e.what() << '\n';
+        errors << "shakerbench diagnose: " << e.what() << '\n';
         return config::kExitBadInput;
     } catch (const std::exception& e) {
-        std::cerr << "shakerbench diagnose: " << e.what() << '\n';
+        errors << "shakerbench diagnose: " << e.what() << '\n';
         return config::kExitFailure;
     }
 }
@@ -94,6 +168,11 @@ void register_diagnose_command(CLI::App& app, int& exit_code) {
     cmd->add_option("--budget", args->budget,
                     "evaluations per level for each --drift calibration (default 15)")
         ->check(CLI::Range(1, 100000));
+    cmd->add_option("--mode", args->mode,
+                    "the --drift calibrations' search: direct (DIRECT-L then BOBYQA, one "
+                    "evaluation at a time) or surrogate (emulator, expected improvement; its "
+                    "batches spread over MPI ranks)")
+        ->check(CLI::IsMember({"direct", "surrogate"}));
     cmd->add_option("-o,--out", args->out_dir,
                     "output directory (default: out/<campaign name>-diagnosis)");
     cmd->add_option("-j,--threads", args->threads, "threads (default: all cores)")
@@ -106,6 +185,10 @@ void register_diagnose_command(CLI::App& app, int& exit_code) {
         if (!args->config.empty()) args->command_line += " " + args->config;
         args->command_line += " --measured " + args->measured;
         for (const auto& d : args->drift) args->command_line += " --drift " + d;
+        if (!args->drift.empty()) {
+            args->command_line +=
+                " --budget " + std::to_string(args->budget) + " --mode " + args->mode;
+        }
         if (!args->out_dir.empty()) args->command_line += " --out " + args->out_dir;
         args->command_line += overrides_text(args->overrides);
         exit_code = run(*args);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/text_file.hpp"
 #include "correlation/report_text.hpp"
@@ -36,7 +37,56 @@ std::vector<LevelFeatureValues> from_damping_rows(
     return out;
 }
 
+/// The head of a distributed drift evaluation's input: the drift value's and the level's
+/// indices, each on its own line.
+std::string drift_input_head(std::size_t parameter, std::size_t level) {
+    return std::to_string(parameter) + "\n" + std::to_string(level) + "\n";
+}
+
+/// Reads an index line of `input` from `at` (moved past it); throws when it is not one below
+/// `count`.
+std::size_t index_line(const std::string& input, std::size_t& at, std::size_t count,
+                       const char* what) {
+    const auto end = input.find('\n', at);
+    const std::string text = input.substr(at, end == std::string::npos ? end : end - at);
+    at = end == std::string::npos ? input.size() : end + 1;
+    std::size_t used = 0;
+    unsigned long value = 0;
+    try {
+        value = std::stoul(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used == 0 || used != text.size() || value >= count) {
+        throw std::invalid_argument(std::string("a diagnosis evaluation names no ") + what + " '" +
+                                    text + "'");
+    }
+    return value;
+}
+
 }  // namespace
+
+std::function<std::string(const std::string&, int)> diagnosis_simulator(
+    const bench::CampaignConfig& config, const Measurement& measurement,
+    const DiagnosisOptions& options) {
+    // One calibration simulator per drift value and level, built as drift_test builds their
+    // calibrations.
+    std::vector<std::vector<std::function<std::string(const std::string&, int)>>> simulators;
+    for (const auto& parameter : options.drift) {
+        auto& per_level = simulators.emplace_back();
+        for (const auto& sweep : measurement.selection.sweeps) {
+            per_level.push_back(calibration_simulator(
+                config, level_measurement(measurement, sweep.arrangement, sweep.level_g),
+                {parameter}, options.calibration));
+        }
+    }
+    return [simulators = std::move(simulators)](const std::string& input, int threads) {
+        std::size_t at = 0;
+        const auto p = index_line(input, at, simulators.size(), "drift value");
+        const auto level = index_line(input, at, simulators[p].size(), "level");
+        return simulators[p][level](input.substr(at), threads);
+    };
+}
 
 DiagnosisResult diagnose(const bench::CampaignConfig& config, const std::filesystem::path& measured,
                          const DiagnosisOptions& options) {
@@ -57,19 +107,36 @@ DiagnosisResult diagnose(const bench::CampaignConfig& config, const std::filesys
     }
     say("simulating the baseline on the measured points (" +
         std::to_string(result.measurement.selection.sweeps.size()) + " sweeps)");
-    const auto simulate = options.calibration.simulate ? options.calibration.simulate
-                                                       : Simulation(coupled_simulation);
-    const bench::CampaignResult baseline =
-        simulate(config, result.measurement.selection, options.calibration.threads);
+    bench::CampaignResult baseline;
+    if (options.calibration.simulate) {
+        baseline = options.calibration.simulate(config, result.measurement.selection,
+                                                options.calibration.threads);
+    } else {
+        bench::CampaignContext context;
+        context.threads = options.calibration.threads;
+        context.selection = result.measurement.selection;
+        context.executor = options.baseline_executor;
+        baseline = bench::run_campaign(config, context);
+    }
     result.simulated = level_feature_values(baseline.recording, options.stated);
 
     // Locate: the features beyond the noise and their scaling with the level.
     result.mismatches = locate_mismatch(result.measured, result.simulated);
     for (const auto& m : result.mismatches) say(m.sentence);
-    for (const auto& parameter : options.drift) {
+    for (std::size_t p = 0; p < options.drift.size(); ++p) {
+        const auto& parameter = options.drift[p];
         say("calibrating " + parameter.path + " level by level");
+        LevelRemote level_remote;
+        if (options.remote) {
+            level_remote = [&options, p](std::size_t level, const std::vector<std::string>& in) {
+                std::vector<std::string> inputs;
+                inputs.reserve(in.size());
+                for (const auto& i : in) inputs.push_back(drift_input_head(p, level) + i);
+                return options.remote(inputs);
+            };
+        }
         result.drifts.push_back(
-            drift_test(config, result.measurement, parameter, options.calibration));
+            drift_test(config, result.measurement, parameter, options.calibration, level_remote));
         say(result.drifts.back().sentence);
     }
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/campaign.hpp"
 #include "correlation/calibration.hpp"
 #include "correlation/drift.hpp"
 #include "correlation/mismatch.hpp"
@@ -23,6 +24,13 @@ struct DiagnosisOptions {
     /// simulates the baseline.
     CalibrationOptions calibration;
     std::function<void(const std::string&)> progress;  ///< empty: none
+    /// Runs the baseline's sweeps when calibration.simulate is empty (the sweeps of an MPI
+    /// run: distributed/campaign.hpp); null: this process's threads.
+    bench::SweepExecutor* baseline_executor = nullptr;
+    /// Simulates the drift calibrations' evaluations in other processes (MPI ranks;
+    /// distributed/rounds.hpp): each input in the form diagnosis_simulator reads, answered by
+    /// its text on another rank. Empty: this process's threads.
+    std::function<std::vector<std::string>(const std::vector<std::string>& inputs)> remote;
 };
 
 struct DiagnosisResult {
@@ -40,6 +48,14 @@ struct DiagnosisResult {
 /// read_measurement, the simulation and calibrate throw.
 DiagnosisResult diagnose(const bench::CampaignConfig& config, const std::filesystem::path& measured,
                          const DiagnosisOptions& options);
+
+/// What another process of a distributed diagnosis runs for each input of
+/// DiagnosisOptions::remote (which drift value, which level, then the calibration's input):
+/// the same config, measurement and options as the diagnosing process give the same
+/// simulation. A bad input throws std::invalid_argument.
+std::function<std::string(const std::string& input, int threads)> diagnosis_simulator(
+    const bench::CampaignConfig& config, const Measurement& measurement,
+    const DiagnosisOptions& options);
 
 /// Writes diagnosis.toml (verdict, located residuals, drift tests) and report.md into
 /// out_dir. Throws sb::FileWriteError naming a file that cannot be written.

@@ -41,12 +41,21 @@ Measurement level_measurement(const Measurement& measurement, const std::string&
 }
 
 DriftResult drift_test(const bench::CampaignConfig& config, const Measurement& measurement,
-                       const FreeParameter& parameter, const CalibrationOptions& options) {
+                       const FreeParameter& parameter, const CalibrationOptions& options,
+                       const LevelRemote& level_remote) {
     DriftResult result;
     result.parameter = parameter;
-    for (const auto& sweep : measurement.selection.sweeps) {
+    const auto& sweeps = measurement.selection.sweeps;
+    for (std::size_t level = 0; level < sweeps.size(); ++level) {
+        const auto& sweep = sweeps[level];
         const Measurement one = level_measurement(measurement, sweep.arrangement, sweep.level_g);
-        const CalibrationResult r = calibrate(config, one, {parameter}, options);
+        CalibrationOptions at_level = options;
+        if (level_remote) {
+            at_level.remote = [&level_remote, level](const std::vector<std::string>& inputs) {
+                return level_remote(level, inputs);
+            };
+        }
+        const CalibrationResult r = calibrate(config, one, {parameter}, at_level);
         LevelValue v;
         v.arrangement = sweep.arrangement;
         v.level_g = sweep.level_g;

@@ -4,6 +4,8 @@
 // trend with the level says the model misses a physics that the value stands in for.
 #pragma once
 
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -37,11 +39,18 @@ struct DriftResult {
     std::string sentence;  ///< in words
 };
 
+/// Simulates the evaluations of the calibration at sweep `level` of the measurement in other
+/// processes (CalibrationOptions::remote, told which level it serves).
+using LevelRemote = std::function<std::vector<std::string>(std::size_t level,
+                                                           const std::vector<std::string>& inputs)>;
+
 /// Calibrates `parameter` alone at each arrangement and level of `measurement` (the other
 /// levels left out), with `options`, and tests the values for a trend. Needs two identifiable
-/// levels for a verdict (the sentence says so otherwise). Throws what calibrate throws.
+/// levels for a verdict (the sentence says so otherwise). With `level_remote`, each level's
+/// evaluations are simulated through it. Throws what calibrate throws.
 DriftResult drift_test(const bench::CampaignConfig& config, const Measurement& measurement,
-                       const FreeParameter& parameter, const CalibrationOptions& options);
+                       const FreeParameter& parameter, const CalibrationOptions& options,
+                       const LevelRemote& level_remote = {});
 
 /// The measurement restricted to one arrangement and level: its features and its sweep.
 Measurement level_measurement(const Measurement& measurement, const std::string& arrangement,

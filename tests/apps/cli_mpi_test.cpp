@@ -232,6 +232,57 @@ TEST(CliMpi, TwoRanksShareACalibrationsEvaluationsAndFindWhatOneProcessFinds) {
     EXPECT_EQ(calibration_results(one), calibration_results(two));
 }
 
+/// diagnosis.toml without the lines that say how it was made (command, wall time).
+std::string diagnosis_results(const fs::path& dir) {
+    std::istringstream in(file_text(dir / "diagnosis.toml"));
+    std::string kept;
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("command = ", 0) != 0 && line.rfind("wall_time_s = ", 0) != 0) {
+            kept += line + "\n";
+        }
+    }
+    return kept;
+}
+
+TEST(CliMpi, TwoRanksShareTheSweepsAndDriftEvaluationsOfADiagnosisAndSayWhatOneProcessSays) {
+    const auto dir = temp_dir("mpi-diagnose-" + std::to_string(getpid()));
+    const auto config = write_rigid_campaign(dir);
+    // Three levels, measured with more damping than the config says.
+    const std::string levels =
+        " --set 'campaign.levels_g=[1.0, 2.0, 3.0]' --set campaign.frequencies.count=9"
+        " --set campaign.frequencies.low_ratio=0.96 --set campaign.frequencies.high_ratio=1.04";
+    const auto measured = dir / "measured";
+    ASSERT_EQ(run("run " + config.string() + levels +
+                  " --set structure.damping.default_ratio=0.008 --out " + measured.string() + " -q")
+                  .exit_code,
+              0);
+    const std::string diagnose = " diagnose " + config.string() + levels + " --measured " +
+                                 measured.string() +
+                                 " --drift structure.damping.default_ratio=0.002:0.02"
+                                 " --mode surrogate --budget 8 -j 1";
+    const auto one = dir / "one-process";
+    const auto r = run(diagnose.substr(1) + " --out " + one.string() + " -q");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+
+    // Two ranks: the baseline's three sweeps and the drift calibrations' simulations on both.
+    const auto two = dir / "two-ranks";
+    const auto m = run_command(mpirun(2) + diagnose + " --out " + two.string() + " 2>&1");
+    ASSERT_EQ(m.exit_code, 0) << m.output;
+    const std::regex per_rank(
+        "sweeps run per rank: ([0-9]+) ([0-9]+); evaluations run per rank: ([0-9]+) ([0-9]+) "
+        "\\(2 ranks");
+    std::smatch match;
+    ASSERT_TRUE(std::regex_search(m.output, match, per_rank)) << m.output;
+    EXPECT_EQ(std::stoi(match[1]) + std::stoi(match[2]), 3) << m.output;
+    EXPECT_GT(std::stoi(match[2]), 0) << m.output;
+    EXPECT_GT(std::stoi(match[3]), 0) << m.output;
+    EXPECT_GT(std::stoi(match[4]), 0) << m.output;
+    EXPECT_NE(m.output.find("mismatch beyond the noise: H-0 damping ratio"), std::string::npos)
+        << m.output;
+    EXPECT_EQ(diagnosis_results(one), diagnosis_results(two));
+    EXPECT_NE(diagnosis_results(two).find("[[drift]]"), std::string::npos);
+}
+
 /// characterization.csv without its command line (it names the output folder).
 std::string characterization_without_command(const fs::path& dir) {
     std::istringstream in(file_text(dir / "characterization.csv"));
