@@ -1,7 +1,8 @@
-// Attachments: the DEM damper and the rigid particles.
+// Attachments: the DEM damper, the rigid particles, the describing function, an air-drag strip.
 #include "bench/attachment.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "core/units.hpp"
@@ -151,6 +152,25 @@ AttachmentState DescribingFunctionDamper::state() const {
 void DescribingFunctionDamper::restore(const AttachmentState& state) {
     if (state.describing) state_ = *state.describing;
     estimate_from_motion_ = true;
+}
+
+AirDragStrip::AirDragStrip(const Eigen::Vector3d& normal, double coefficient_kg_m)
+    : normal_(normal.normalized()), coefficient_kg_m_(coefficient_kg_m) {}
+
+PointLoad AirDragStrip::step(const PointMotion& motion, double) const {
+    const double v = normal_.dot(motion.velocity_m_s);
+    return {-coefficient_kg_m_ * std::abs(v) * v * normal_, Eigen::Vector3d::Zero()};
+}
+
+DescribingFunction::Value AirDragStrip::describing(double acceleration_m_s2,
+                                                   double frequency_hz) const {
+    const double w = 2.0 * std::numbers::pi * frequency_hz;
+    DescribingFunction::Value value;
+    value.apparent_mass_kg = std::complex<double>(
+        0.0, -8.0 / (3.0 * std::numbers::pi) * coefficient_kg_m_ * acceleration_m_s2 / (w * w));
+    value.h2_ratio = 0.0;
+    value.h3_ratio = 0.2;
+    return value;
 }
 
 PointLoad step(Attachment& attachment, const PointMotion& motion, double dt_s) {

@@ -156,7 +156,45 @@ class DescribingFunctionDamper {
     std::complex<double> sum_phasor_ = 0.0;
 };
 
-using AttachmentModel = std::variant<DemDamper, RigidParticles, DescribingFunctionDamper>;
+/// A strip of the beam under quadratic air drag, lumped at its midpoint (physics.air_drag;
+/// bench/air_drag.hpp): F = -k |v_n| v_n n along the wide face's normal n, with
+/// k = 1/2 rho C_D b l for a strip of width b and length l. Stateless; its load is that of the
+/// motion at the step's start, applied over the step (the drag changes little in a step of
+/// a few hundredths of a period at most).
+class AirDragStrip {
+  public:
+    AirDragStrip(const Eigen::Vector3d& normal, double coefficient_kg_m);
+
+    PointLoad step(const PointMotion& motion, double dt_s) const;
+    [[nodiscard]] PointLoad weight() const { return {}; }
+    [[nodiscard]] AttachmentState state() const { return {}; }
+    [[nodiscard]] AttachmentState state_at(const PointMotion&) const { return {}; }
+    void restore(const AttachmentState& s) const { no_particles(s); }
+    void restore_at(const AttachmentState& s, const PointMotion&) const { no_particles(s); }
+    void set_frequency(double) {}
+
+    /// Its describing function along n at the peak acceleration |a1| [m/s^2] and frequency
+    /// [Hz]: for v = V sin(w t) the fundamental of -k |v| v is -(8 / 3 pi) k V v, so
+    /// M = -i (8 / 3 pi) k |a1| / w^2, and |Q3| / |Q1| = 1/5 (|sin| sin = (8 / 3 pi) sin -
+    /// (8 / 15 pi) sin 3 wt - ...), no even harmonic. Exact for a harmonic motion.
+    [[nodiscard]] DescribingFunction::Value describing(double acceleration_m_s2,
+                                                       double frequency_hz) const;
+
+    [[nodiscard]] double coefficient_kg_m() const { return coefficient_kg_m_; }
+
+  private:
+    static void no_particles(const AttachmentState& s) {
+        if (s.dem || s.describing) {
+            throw std::invalid_argument("an air-drag strip carries no state, this one has some");
+        }
+    }
+
+    Eigen::Vector3d normal_;
+    double coefficient_kg_m_;
+};
+
+using AttachmentModel =
+    std::variant<DemDamper, RigidParticles, DescribingFunctionDamper, AirDragStrip>;
 
 /// A model at a named point.
 struct Attachment {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bench/campaign_spec.hpp"
+#include "bench/physics_spec.hpp"
 #include "config/source_map.hpp"
 #include "config/value.hpp"
 #include "structure/spec.hpp"
@@ -21,6 +22,7 @@ struct CampaignConfig {
     std::string description;        ///< [campaign] description
     structure::StructureSpec structure;
     CampaignSpec campaign;           ///< levels, grid, arrangements, dampers, controller, output
+    PhysicsSpec physics;             ///< catalogue physics switched on (none by default)
     std::string source;              ///< file name (or "<built-in ...>") for messages
     std::filesystem::path base_dir;  ///< relative paths in the config resolve here
     config::SourceMap where;         ///< where each value came from: the file, the overrides

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "bench/air_drag.hpp"
 #include "bench/arrangement.hpp"
 #include "bench/frequency_grid.hpp"
 #include "config/errors.hpp"
@@ -206,6 +207,11 @@ structure::StructureSpec arrangement_structure(const CampaignConfig& config,
     structure::StructureSpec spec = config.structure;
     spec.beam = spec.beam.resolved();  // masses at named points placed there
     spec.gravity_m_s2 = arrangement_gravity(arrangement);
+    if (config.physics.air_drag.on() && spec.kind == structure::StructureSpec::Kind::beam) {
+        for (auto& p : air_drag_points(spec.beam, config.physics.air_drag.stations)) {
+            spec.beam.points.push_back(std::move(p));
+        }
+    }
     for (const auto& d : config.campaign.dampers) {
         const DamperMounting mounting = damper_mounting(arrangement, d);
         if (!d.enclosure_mass.empty()) {

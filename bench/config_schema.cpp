@@ -303,6 +303,44 @@ std::shared_ptr<const config::Table> output_table() {
     return t.build();
 }
 
+std::shared_ptr<const config::Table> air_drag_table() {
+    TableBuilder<AirDragSpec> t(
+        "aerodynamic drag of the beam",
+        "Quadratic air drag of a thin beam moving across its wide face, f = -1/2 rho C_D b |v| v "
+        "per unit length along the face normal (z), lumped at the midpoints of `stations` equal "
+        "strips of the beam; damping that grows in proportion to the amplitude. Beam "
+        "structures only.");
+    t.number(
+         "drag_coefficient", [](AirDragSpec & a) -> auto& { return a.drag_coefficient; },
+         "drag coefficient C_D of the section across its wide face; 0 turns the drag off")
+        .unit("-")
+        .bound(Bound::non_negative())
+        .doc(
+            "drag coefficient C_D of the section across its wide face (about 2 for a flat "
+            "plate broadside to the flow; an oscillating strip's is larger at small "
+            "Keulegan-Carpenter numbers); 0 turns the drag off");
+    t.number(
+         "air_density_kg_m3", [](AirDragSpec & a) -> auto& { return a.air_density_kg_m3; },
+         "density of the surrounding air")
+        .unit("kg/m^3")
+        .bound(Bound::positive());
+    t.integer(
+         "stations", [](AirDragSpec & a) -> auto& { return a.stations; },
+         "equal strips of the beam the drag is lumped over, one point at each strip's middle")
+        .bound(Bound::at_least(1));
+    return t.build();
+}
+
+std::shared_ptr<const config::Table> physics_table() {
+    TableBuilder<PhysicsSpec> t(
+        "physics a model may leave out",
+        "Optional components of the structure and its rig, each off by default, that a "
+        "diagnosis switches on and fits (docs/diagnosis.md, the physics catalogue).");
+    t.table(
+        "air_drag", [](PhysicsSpec & p) -> auto& { return p.air_drag; }, air_drag_table());
+    return t.build();
+}
+
 /// Names a structure of this spec offers as points (beam: points, masses and supports;
 /// lumped: masses; matrix: the prefixes of named DOFs).
 std::vector<std::string> point_names(const structure::StructureSpec& spec) {
@@ -393,10 +431,21 @@ std::shared_ptr<const config::Table> build_campaign_schema() {
     root.table(
         "output", [](CampaignConfig & c) -> auto& { return c.campaign.output; }, output_table());
     root.table(
+        "physics", [](CampaignConfig & c) -> auto& { return c.physics; }, physics_table());
+    root.table(
             "structure", [](CampaignConfig & c) -> auto& { return c.structure; },
             schema::structure_table())
         .required();
-    root.check([](const CampaignConfig& c) { return check_references(c); });
+    root.check([](const CampaignConfig& c) {
+        Violations out = check_references(c);
+        if (c.physics.air_drag.on() && c.structure.kind != structure::StructureSpec::Kind::beam) {
+            out.push_back({"physics.air_drag.drag_coefficient",
+                           config::number_text(c.physics.air_drag.drag_coefficient),
+                           "needs a beam structure (structure.kind = \"beam\")",
+                           "the drag acts on the beam's wide face"});
+        }
+        return out;
+    });
     return root.build();
 }
 

@@ -7,10 +7,12 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <functional>
 #include <map>
 #include <memory>
 #include <sstream>
 
+#include "bench/air_drag.hpp"
 #include "bench/arrangement.hpp"
 #include "bench/resolved_config.hpp"
 #include "config/dotted_path.hpp"
@@ -90,10 +92,12 @@ PointLoad bed_weight(const ArrangementSpec& arrangement, const DamperSpec& dampe
     return {w, arm.cross(w)};
 }
 
-/// A describing-function damper of one sweep.
+/// A describing function at a point of one sweep: a damper's, characterised, or a catalogue
+/// physics' in closed form (an air-drag strip).
 struct Described {
-    const DamperSpec* spec = nullptr;
-    std::shared_ptr<const DescribingFunction> function;
+    std::string point;
+    std::function<DescribingFunction::Value(double acceleration_m_s2, double frequency_hz)>
+        evaluate;
 };
 
 /// One predicted point.
@@ -135,10 +139,10 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
     Eigen::MatrixXcd h_cp(static_cast<Eigen::Index>(nc), static_cast<Eigen::Index>(nd));
     for (std::size_t j = 0; j < nd; ++j) {
         const auto jj = static_cast<Eigen::Index>(j);
-        h_pd(jj) = accelerance(dampers[j].spec->point, excitation.point, frequency_hz);
+        h_pd(jj) = accelerance(dampers[j].point, excitation.point, frequency_hz);
         for (std::size_t k = 0; k < nd; ++k) {
             h_pp(jj, static_cast<Eigen::Index>(k)) =
-                accelerance(dampers[j].spec->point, dampers[k].spec->point, frequency_hz);
+                accelerance(dampers[j].point, dampers[k].point, frequency_hz);
         }
     }
     for (std::size_t c = 0; c < nc; ++c) {
@@ -146,7 +150,7 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
         h_cd(cc) = accelerance(channel_points[c], excitation.point, frequency_hz);
         for (std::size_t k = 0; k < nd; ++k) {
             h_cp(cc, static_cast<Eigen::Index>(k)) =
-                accelerance(channel_points[c], dampers[k].spec->point, frequency_hz);
+                accelerance(channel_points[c], dampers[k].point, frequency_hz);
         }
     }
     const double target_peak = std::sqrt(2.0) * g_to_m_s2(level_g);
@@ -156,7 +160,7 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
     std::vector<double> amplitude(nd);
     for (std::size_t j = 0; j < nd; ++j) {
         amplitude[j] =
-            channel_points.front() == dampers[j].spec->point
+            channel_points.front() == dampers[j].point
                 ? target_peak
                 : target_peak * std::abs(h_pd(static_cast<Eigen::Index>(j))) / std::abs(h_cd(0));
     }
@@ -166,7 +170,7 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
     std::vector<DescribingFunction::Value> values(nd);
     for (int it = 1; it <= kPredictIterations; ++it) {
         for (std::size_t j = 0; j < nd; ++j) {
-            values[j] = dampers[j].function->evaluate(amplitude[j], frequency_hz);
+            values[j] = dampers[j].evaluate(amplitude[j], frequency_hz);
             mass(static_cast<Eigen::Index>(j)) = values[j].apparent_mass_kg;
         }
         const Eigen::MatrixXcd system = Eigen::MatrixXcd::Identity(static_cast<Eigen::Index>(nd),
@@ -211,12 +215,12 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
         for (std::size_t c = 0; c < nc; ++c) {
             const double a1 = std::abs(s.channels[c]);
             if (!(a1 > 0.0)) continue;
-            s.h2[c] += std::abs(accelerance(channel_points[c], dampers[j].spec->point,
-                                            2.0 * frequency_hz)) *
-                       values[j].h2_ratio * q1 / a1;
-            s.h3[c] += std::abs(accelerance(channel_points[c], dampers[j].spec->point,
-                                            3.0 * frequency_hz)) *
-                       values[j].h3_ratio * q1 / a1;
+            s.h2[c] +=
+                std::abs(accelerance(channel_points[c], dampers[j].point, 2.0 * frequency_hz)) *
+                values[j].h2_ratio * q1 / a1;
+            s.h3[c] +=
+                std::abs(accelerance(channel_points[c], dampers[j].point, 3.0 * frequency_hz)) *
+                values[j].h3_ratio * q1 / a1;
         }
         s.inside = s.inside && values[j].inside;
         s.settled = s.settled && values[j].settled;
@@ -231,8 +235,8 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
         const double a1 = s.force_n * std::abs(a_p(static_cast<Eigen::Index>(j)));
         double harmonics = 0.0;
         for (std::size_t k = 0; k < nd; ++k) {
-            const auto& out = dampers[j].spec->point;
-            const auto& in = dampers[k].spec->point;
+            const auto& out = dampers[j].point;
+            const auto& in = dampers[k].point;
             harmonics +=
                 std::abs(accelerance(out, in, 2.0 * frequency_hz)) * values[k].h2_ratio * q1[k] +
                 std::abs(accelerance(out, in, 3.0 * frequency_hz)) * values[k].h3_ratio * q1[k];
@@ -291,6 +295,14 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
                                    "cannot be predicted: predict drives a force",
                                    "base excitation is run by `shakerbench run` only"));
     }
+    if (config.physics.air_drag.on() &&
+        !config.structure.excitation.direction.normalized().isApprox(Eigen::Vector3d::UnitZ())) {
+        problems.push_back(problem(config, "physics.air_drag.drag_coefficient",
+                                   config::number_text(config.physics.air_drag.drag_coefficient),
+                                   "cannot be predicted with the drive off the beam's z axis",
+                                   "predict balances the drag along the excitation direction, "
+                                   "the drag acts along the wide face's normal z"));
+    }
     if (!problems.empty()) throw config::ConfigException(problems);
     const CampaignPlan plan = plan_campaign(config, context.selection);
 
@@ -331,10 +343,18 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
         for (const auto& d : campaign.dampers) {
             if (d.model != DamperSpec::Model::describing_function) continue;
             const auto& table = table_of(config, d, tables);
-            dampers.push_back({&d, function_of(config, d, prepared.arrangement.name, table)});
+            auto function = function_of(config, d, prepared.arrangement.name, table);
+            dampers.push_back(
+                {d.point, [function](double a, double f) { return function->evaluate(a, f); }});
             sweep.settings.push_back(d.name + ": describing function of " +
                                      d.characterization_file.string() + " (characterised config " +
                                      table.config_hash + ")");
+        }
+        for (const auto& a : air_drag_attachments(config)) {
+            const auto strip = std::get<AirDragStrip>(a.model);
+            dampers.push_back({a.point, [strip](double acceleration, double f) {
+                                   return strip.describing(acceleration, f);
+                               }});
         }
         for (double f : task.frequencies_hz) {
             const Solution s =

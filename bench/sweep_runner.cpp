@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "bench/air_drag.hpp"
 #include "bench/arrangement.hpp"
 #include "bench/attachment.hpp"
 #include "bench/coupled_specimen.hpp"
@@ -287,6 +288,13 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
         attachments.push_back({damper.name, damper.point,
                                DemDamper(options, mounting.rotation, mounting.origin_m, bed,
                                          prepared.model.point(damper.point).position_m)});
+    }
+
+    // The catalogue physics at points of their own (after the dampers, whose indices the
+    // checkpoints and the energy ledger use).
+    for (auto& strip : air_drag_attachments(config)) {
+        damper_names.push_back(strip.name);
+        attachments.push_back(std::move(strip));
     }
 
     std::vector<std::string> channel_points{campaign.control_point};
