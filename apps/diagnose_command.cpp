@@ -28,6 +28,7 @@ struct DiagnoseArgs {
     std::vector<std::string> drift;
     int budget = 15;
     std::string mode = "direct";
+    int hypotheses = 3;
     std::string out_dir;
     int threads = 0;
     correlation::StatedUncertainty stated;
@@ -80,6 +81,7 @@ int run(const DiagnoseArgs& args) {
             args.out_dir.empty() ? std::filesystem::path("out") / (config->name + "-diagnosis")
                                  : std::filesystem::path(args.out_dir);
         options.calibration.search.budget = args.budget;
+        options.hypotheses = args.hypotheses;
         options.calibration.search.mode = args.mode == "surrogate"
                                               ? correlation::SearchMode::surrogate
                                               : correlation::SearchMode::direct;
@@ -156,8 +158,9 @@ void register_diagnose_command(CLI::App& app, int& exit_code) {
         "Say where CONFIG's simulation and a measured recording disagree: the config simulated "
         "on the measured points, both reduced to natural frequency, damping, peak |H| and its "
         "phase, harmonic ratios and drive per level, the features beyond the noise and how "
-        "they scale with the level, and values that drift when calibrated level by level "
-        "(docs/diagnosis.md).");
+        "they scale with the level, values that drift when calibrated level by level, and "
+        "which physics of the catalogue the model left out: ranked by signature, fitted, "
+        "compared by BIC and checked on the held-out highest level (docs/diagnosis.md).");
     cmd->add_option("config", args->config, "campaign config (TOML)");
     cmd->add_option("--measured", args->measured,
                     "measured recording directory (damping.csv, points.csv, time histories)")
@@ -173,6 +176,11 @@ void register_diagnose_command(CLI::App& app, int& exit_code) {
                     "evaluation at a time) or surrogate (emulator, expected improvement; its "
                     "batches spread over MPI ranks)")
         ->check(CLI::IsMember({"direct", "surrogate"}));
+    cmd->add_option("--hypotheses", args->hypotheses,
+                    "catalogue physics to fit, at most, when a feature disagrees: the best-ranked "
+                    "by signature, each switched on and fitted on all but the highest level "
+                    "(default 3; 0: none)")
+        ->check(CLI::Range(0, 100));
     cmd->add_option("-o,--out", args->out_dir,
                     "output directory (default: out/<campaign name>-diagnosis)");
     cmd->add_option("-j,--threads", args->threads, "threads (default: all cores)")
@@ -188,6 +196,9 @@ void register_diagnose_command(CLI::App& app, int& exit_code) {
         if (!args->drift.empty()) {
             args->command_line +=
                 " --budget " + std::to_string(args->budget) + " --mode " + args->mode;
+        }
+        if (args->hypotheses != 3) {
+            args->command_line += " --hypotheses " + std::to_string(args->hypotheses);
         }
         if (!args->out_dir.empty()) args->command_line += " --out " + args->out_dir;
         args->command_line += overrides_text(args->overrides);

@@ -315,6 +315,7 @@ std::shared_ptr<const config::Table> air_drag_table() {
          "drag coefficient C_D of the section across its wide face; 0 turns the drag off")
         .unit("-")
         .bound(Bound::non_negative())
+        .calibrated_within(0.0, 60.0)
         .doc(
             "drag coefficient C_D of the section across its wide face (about 2 for a flat "
             "plate broadside to the flow; an oscillating strip's is larger at small "

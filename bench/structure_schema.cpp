@@ -323,6 +323,7 @@ std::shared_ptr<const config::Table> damping_table() {
          "damping ratio of every mode not in modal_ratios")
         .unit("-")
         .bound(Bound::right_open(0.0, 1.0))
+        .calibrated_within(0.0, 0.05)
         .when(modal, "only for model = \"modal\"", true);
     t.numbers(
          "modal_ratios", [](DampingSpec & d) -> auto& { return d.modal_ratios; },

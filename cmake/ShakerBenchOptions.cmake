@@ -46,7 +46,8 @@ function(sb_add_module name)
 endfunction()
 
 # sb_add_test(NAME LABEL [SERIAL] SOURCES ... DEPENDS ...): one GoogleTest executable
-# registered with CTest, every test in it carrying LABEL (unit, validation or slow). SERIAL:
+# registered with CTest, every test in it carrying LABEL (unit, validation, slow or long: runs
+# of minutes that the ci test preset leaves out). SERIAL:
 # the tests run alone (RUN_SERIAL) with passive OpenMP waiting, for suites that run campaigns
 # on several threads, so that ctest -j never puts two of them on the two cores and no idle
 # thread spins at a barrier.

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "config/errors.hpp"
+#include "config/value.hpp"
 #include "correlation/emulator.hpp"
 #include "correlation/space_filling.hpp"
 #include "correlation/two_fidelity.hpp"
@@ -201,6 +202,18 @@ CalibrationResult calibrate(const bench::CampaignConfig& config, const Measureme
             std::to_string(result.best.misfit) + " against " + std::to_string(result.start.misfit) +
             "): the simulations scatter more than the free values move them; more fillings "
             "per evaluation (campaign.seeds) or other levels are needed");
+        // The emulator's landscape did not hold where it mattered most, so its intervals
+        // cannot be taken for what the data say: none is reported identifiable.
+        for (auto& f : result.findings) {
+            if (!f.identifiable) continue;
+            f.identifiable = false;
+            f.reason =
+                "the emulated optimum, simulated, fit worse than the start, so the "
+                "emulator's interval [" +
+                config::number_text(f.lo95) + ", " + config::number_text(f.hi95) +
+                "] is not what the data say: the simulations scatter more than this "
+                "value moves them";
+        }
     }
     for (auto& f : result.findings) {
         for (std::size_t j = 0; j < free.size(); ++j) {

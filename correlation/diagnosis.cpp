@@ -1,11 +1,13 @@
 #include "correlation/diagnosis.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 
+#include "bench/resolved_config.hpp"
 #include "core/text_file.hpp"
 #include "correlation/report_text.hpp"
 #include "identification/recording_io.hpp"
@@ -144,6 +146,19 @@ DiagnosisResult diagnose(const bench::CampaignConfig& config, const std::filesys
     for (const auto& m : result.mismatches) {
         if (m.beyond_noise) what.push_back(m.arrangement + " " + level_feature_name(m.feature));
     }
+    // Hypothesise and test: the catalogue's physics whose signatures match, fitted.
+    if (!what.empty() && options.hypotheses > 0) {
+        say("fitting the catalogue's physics whose signatures match");
+        HypothesisOptions ho;
+        ho.candidates = options.hypotheses;
+        ho.calibration = options.calibration;
+        ho.calibration.simulate = options.hypothesis_simulate ? options.hypothesis_simulate
+                                                              : candidate_simulation(config);
+        ho.calibration.remote = {};
+        ho.calibration.progress = options.progress;
+        result.hypotheses = test_hypotheses(config, result.measurement, result.mismatches, ho);
+        say(result.hypotheses->sentence);
+    }
     for (const auto& d : result.drifts) {
         if (d.drifts) what.push_back(d.parameter.path + " drifts with the level");
     }
@@ -154,6 +169,7 @@ DiagnosisResult diagnose(const bench::CampaignConfig& config, const std::filesys
         std::string list;
         for (std::size_t i = 0; i < what.size(); ++i) list += (i ? "; " : "") + what[i];
         result.verdict = "mismatch beyond the noise: " + list;
+        if (result.hypotheses) result.verdict += "; " + result.hypotheses->sentence;
     }
     result.wall_time_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -201,6 +217,56 @@ void write_diagnosis(const std::filesystem::path& out_dir, const DiagnosisResult
           << "slope_sigma_per_g = " << num(d.slope_sigma) << '\n'
           << "finding = " << toml_string(d.sentence) << '\n';
     }
+    if (r.hypotheses) {
+        const auto& h = *r.hypotheses;
+        t << "\n[hypotheses]\n"
+          << "finding = " << toml_string(h.sentence) << '\n'
+          << "winner = "
+          << toml_string(h.winner >= 0 ? h.fits[static_cast<std::size_t>(h.winner)].rank.entry->name
+                                       : std::string())
+          << '\n'
+          << "held_out = [";
+        for (std::size_t k = 0; k < h.held_out.size(); ++k) {
+            t << (k ? ", " : "")
+              << toml_string(h.held_out[k].first + " " + num(h.held_out[k].second, 10) + " g");
+        }
+        t << "]\n";
+        for (const auto& c : h.ranking) {
+            t << "\n[[candidates]]\n"
+              << "name = " << toml_string(c.entry->name) << '\n'
+              << "left_out = " << toml_string(c.entry->left_out) << '\n'
+              << "score = " << num(c.score) << '\n'
+              << "reason = " << toml_string(c.reason) << '\n';
+            const auto fit = std::find_if(h.fits.begin(), h.fits.end(), [&](const CandidateFit& f) {
+                return f.rank.entry == c.entry;
+            });
+            t << "fitted = " << (fit != h.fits.end() && fit->error.empty() ? "true" : "false")
+              << '\n';
+            if (fit == h.fits.end()) continue;
+            if (!fit->error.empty()) {
+                t << "error = " << toml_string(fit->error) << '\n';
+                continue;
+            }
+            t << "bic = " << num(fit->bic) << '\n'
+              << "baseline_bic = " << num(fit->baseline_bic) << '\n'
+              << "misfit_fitted_levels = " << num(fit->fit) << '\n'
+              << "baseline_misfit_fitted_levels = " << num(fit->baseline_fit) << '\n'
+              << "misfit_held_out = " << num(fit->held_out) << '\n'
+              << "baseline_misfit_held_out = " << num(fit->baseline_held_out) << '\n'
+              << "simulations = " << fit->simulations << '\n';
+            for (std::size_t j = 0; j < fit->free.size(); ++j) {
+                t << "\n[[candidates.parameters]]\n"
+                  << "key = " << toml_string(fit->free[j].path) << '\n'
+                  << "value = " << num(fit->values[j], 10) << '\n';
+                if (j < fit->findings.size()) {
+                    t << "lo95 = " << num(fit->findings[j].lo95, 10) << '\n'
+                      << "hi95 = " << num(fit->findings[j].hi95, 10) << '\n'
+                      << "identifiable = " << (fit->findings[j].identifiable ? "true" : "false")
+                      << '\n';
+                }
+            }
+        }
+    }
     std::ostringstream md;
     md << "# Diagnosis report\n\nCommand: `" << command_line << "`\n\n"
        << "Measured: `" << r.measurement.directory.string() << "`\n\n"
@@ -210,10 +276,51 @@ void write_diagnosis(const std::filesystem::path& out_dir, const DiagnosisResult
         md << "\n## Values calibrated level by level\n\n";
         for (const auto& d : r.drifts) md << "- " << d.sentence << ".\n";
     }
-    md << "\nWhich physics the model left out is not tested yet (docs/diagnosis.md).\n";
+    if (r.hypotheses) {
+        const auto& h = *r.hypotheses;
+        md << "\n## The physics left out\n\n"
+           << h.sentence << ".\n\n"
+           << "| candidate | signature match | BIC (baseline → fitted) | misfit, fitted levels | "
+              "misfit, held out | fitted values |\n|---|---|---|---|---|---|\n";
+        for (const auto& c : h.ranking) {
+            md << "| " << c.entry->name << " | " << num(c.score) << ": " << c.reason << " | ";
+            const auto fit = std::find_if(h.fits.begin(), h.fits.end(), [&](const CandidateFit& f) {
+                return f.rank.entry == c.entry;
+            });
+            if (fit == h.fits.end()) {
+                md << "not fitted | | | |\n";
+            } else if (!fit->error.empty()) {
+                md << fit->error << " | | | |\n";
+            } else {
+                md << num(fit->baseline_bic) << " → " << num(fit->bic) << " | "
+                   << num(fit->baseline_fit) << " → " << num(fit->fit) << " | "
+                   << num(fit->baseline_held_out) << " → " << num(fit->held_out) << " | ";
+                for (std::size_t j = 0; j < fit->free.size(); ++j) {
+                    md << (j ? ", " : "") << "`" << fit->free[j].path
+                       << "` = " << num(fit->values[j]);
+                }
+                md << " |\n";
+            }
+        }
+        md << "\nHeld out (not fitted, predicted): ";
+        for (std::size_t k = 0; k < h.held_out.size(); ++k) {
+            md << (k ? ", " : "") << h.held_out[k].first << " " << num(h.held_out[k].second)
+               << " g";
+        }
+        if (h.held_out.empty()) md << "none (fewer than three levels)";
+        md << ".\n";
+        if (h.winner >= 0) md << "\nThe improved config: `improved.toml`.\n";
+    }
     create_directories_for_writing(out_dir);
     write_file_atomically(out_dir / "diagnosis.toml", t.str());
     write_file_atomically(out_dir / "report.md", md.str());
+    if (r.hypotheses && r.hypotheses->winner >= 0) {
+        const auto& w = r.hypotheses->fits[static_cast<std::size_t>(r.hypotheses->winner)];
+        write_file_atomically(out_dir / "improved.toml",
+                              "# The config with " + w.rank.entry->left_out +
+                                  " at its fitted values (" + command_line + ")\n" +
+                                  bench::resolved_config_toml(w.improved));
+    }
 }
 
 }  // namespace sb::correlation

@@ -6,12 +6,14 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "bench/campaign.hpp"
 #include "correlation/calibration.hpp"
 #include "correlation/drift.hpp"
+#include "correlation/hypotheses.hpp"
 #include "correlation/mismatch.hpp"
 
 namespace sb::correlation {
@@ -24,6 +26,11 @@ struct DiagnosisOptions {
     /// simulates the baseline.
     CalibrationOptions calibration;
     std::function<void(const std::string&)> progress;  ///< empty: none
+    /// Catalogue physics fitted when a feature disagrees beyond the noise, at most; 0: none.
+    int hypotheses = 3;
+    /// What they are fitted on; empty: candidate_simulation(config) (the fast prediction
+    /// where the config allows it, else the coupled campaign).
+    Simulation hypothesis_simulate;
     /// Runs the baseline's sweeps when calibration.simulate is empty (the sweeps of an MPI
     /// run: distributed/campaign.hpp); null: this process's threads.
     bench::SweepExecutor* baseline_executor = nullptr;
@@ -39,6 +46,8 @@ struct DiagnosisResult {
     std::vector<LevelFeatureValues> simulated;
     std::vector<FeatureMismatch> mismatches;  ///< beyond the noise first
     std::vector<DriftResult> drifts;
+    /// The catalogue ranked and its best candidates fitted (when a feature disagreed).
+    std::optional<HypothesisTest> hypotheses;
     bool mismatch = false;  ///< a feature beyond the noise, or a value that drifts
     std::string verdict;    ///< "no significant mismatch", or what disagrees, in a sentence
     double wall_time_s = 0.0;
@@ -57,8 +66,10 @@ std::function<std::string(const std::string& input, int threads)> diagnosis_simu
     const bench::CampaignConfig& config, const Measurement& measurement,
     const DiagnosisOptions& options);
 
-/// Writes diagnosis.toml (verdict, located residuals, drift tests) and report.md into
-/// out_dir. Throws sb::FileWriteError naming a file that cannot be written.
+/// Writes diagnosis.toml (verdict, located residuals, drift tests, ranked candidates) and
+/// report.md into out_dir, and improved.toml (the config with the winning physics at its
+/// fitted values, ready to run) when a candidate explains the mismatch. Throws sb::FileWriteError
+/// naming a file that cannot be written.
 void write_diagnosis(const std::filesystem::path& out_dir, const DiagnosisResult& result,
                      const std::string& command_line);
 

@@ -264,7 +264,8 @@ TEST(CliMpi, TwoRanksShareTheSweepsAndDriftEvaluationsOfADiagnosisAndSayWhatOneP
     const auto r = run(diagnose.substr(1) + " --out " + one.string() + " -q");
     ASSERT_EQ(r.exit_code, 0) << r.output;
 
-    // Two ranks: the baseline's three sweeps and the drift calibrations' simulations on both.
+    // Two ranks: the baseline's three sweeps and the drift calibrations' simulations handed
+    // out to both.
     const auto two = dir / "two-ranks";
     const auto m = run_command(mpirun(2) + diagnose + " --out " + two.string() + " 2>&1");
     ASSERT_EQ(m.exit_code, 0) << m.output;
@@ -273,8 +274,9 @@ TEST(CliMpi, TwoRanksShareTheSweepsAndDriftEvaluationsOfADiagnosisAndSayWhatOneP
         "\\(2 ranks");
     std::smatch match;
     ASSERT_TRUE(std::regex_search(m.output, match, per_rank)) << m.output;
+    // The three sweeps of a linear bench take milliseconds: whichever rank asks first may
+    // run them all. The drift evaluations, a batch at a time, reach both.
     EXPECT_EQ(std::stoi(match[1]) + std::stoi(match[2]), 3) << m.output;
-    EXPECT_GT(std::stoi(match[2]), 0) << m.output;
     EXPECT_GT(std::stoi(match[3]), 0) << m.output;
     EXPECT_GT(std::stoi(match[4]), 0) << m.output;
     EXPECT_NE(m.output.find("mismatch beyond the noise: H-0 damping ratio"), std::string::npos)

@@ -2,7 +2,7 @@
 // simulated with known sliding and rolling friction on other fillings of the bed, 2 % noise
 // on every channel. Near the onset of sliding the sliding friction is recovered and a value
 // the data cannot fix is reported as such; in the collisional regime the friction is reported
-// not identifiable. Label slow: some four minutes on two cores.
+// not identifiable. Label long (left out of CI): two to four minutes each on two cores.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -75,7 +75,10 @@ TEST(CalibrationDem, NearTheOnsetOfSlidingTheSlidingFrictionIsRecovered) {
     const auto& sliding = finding(r, kSliding);
     EXPECT_TRUE(sliding.identifiable) << sliding.reason;
     expect_recovered_or_unidentified(sliding, 0.45);
-    expect_recovered_or_unidentified(finding(r, kRolling), 0.02);
+    // The rolling friction hardly moves the response at 0.4 g: reported not identifiable.
+    // (Whether its interval holds the truth is a matter of coverage over many noise draws,
+    // Calibration.TheNinetyFivePercentIntervalsHoldTheTruthInNineOfTenNoiseDraws.)
+    EXPECT_FALSE(finding(r, kRolling).identifiable) << finding(r, kRolling).reason;
     EXPECT_LT(r.best.misfit, 0.5 * r.start.misfit);
     EXPECT_LE(r.simulations, 12 + 2 * 2 + 1);
 }

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <random>
 
 #include "calibration_fixtures.hpp"
 #include "config/errors.hpp"
@@ -72,6 +74,43 @@ TEST(Calibration, TheSurrogateFindsTheSameInFewerSimulations) {
     options.search.budget = 60;
     const auto direct = calibrate(config, measured, linear_free(config), options);
     EXPECT_LT(surrogate.simulations, direct.simulations);
+}
+
+TEST(Calibration, WhenTheAnswerSimulatedFitsWorseThanTheStartNoValueIsCalledIdentifiable) {
+    // A simulation exact at the config's damping (the truth) and scattered by 20 % anywhere
+    // else, as a DEM campaign with too few fillings scatters: the emulator's optimum cannot
+    // hold when simulated, and its narrow interval must not be reported as what the data say.
+    Truth truth;
+    truth.modulus_pa = 72e9;  // the config's
+    const auto measured = read_measurement(measured_linear_bench("unconfirmed", truth), kStated);
+    auto config = rigid_h0();
+    bench::apply_overrides(config, {"structure.damping.default_ratio=0.008"});
+    CalibrationOptions options;
+    options.simulate = [](const bench::CampaignConfig& c, const bench::Selection& selection,
+                          int threads) {
+        auto result = predict(c, selection, threads);
+        const double damping = c.structure.damping.default_ratio;
+        if (damping == 0.008) return result;
+        std::mt19937_64 generator(std::hash<double>{}(damping));
+        std::normal_distribution<double> normal(0.0, 0.2);
+        for (auto& point : result.recording.points) {
+            for (std::size_t k = 1; k < point.values.size(); ++k) {
+                point.values[k].amplitude *= 1.0 + normal(generator);
+            }
+        }
+        return result;
+    };
+    options.search.mode = SearchMode::surrogate;
+    options.search.budget = 8;
+    const auto r = calibrate(
+        config, measured,
+        parse_free_parameters(config, {"structure.damping.default_ratio=0.002:0.02"}), options);
+    ASSERT_GT(r.best.misfit, r.start.misfit);
+    ASSERT_EQ(r.findings.size(), 1U) << r.findings_note;
+    EXPECT_FALSE(r.findings.front().identifiable) << r.findings.front().reason;
+    EXPECT_NE(r.findings.front().reason.find("fit worse than the start"), std::string::npos)
+        << r.findings.front().reason;
+    EXPECT_EQ(r.warnings.size(), 1U);
 }
 
 TEST(Calibration, TwoFidelityCorrectsABiasedCheapModelWithAFewFullSimulations) {

@@ -1,0 +1,197 @@
+#include "correlation/hypotheses.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <set>
+
+#include "bench/prediction.hpp"
+
+namespace sb::correlation {
+namespace {
+
+std::string number(double v, int digits = 3) {
+    char buffer[40];
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
+    return buffer;
+}
+
+bool is_held_out(const std::vector<std::pair<std::string, double>>& held_out,
+                 const std::string& arrangement, double level_g) {
+    return std::any_of(held_out.begin(), held_out.end(), [&](const auto& h) {
+        return h.first == arrangement && same_level(h.second, level_g);
+    });
+}
+
+/// The measurement without its held-out levels.
+Measurement fitting_part(const Measurement& measurement,
+                         const std::vector<std::pair<std::string, double>>& held_out) {
+    Measurement m = measurement;
+    m.features.clear();
+    m.selection.sweeps.clear();
+    m.damping.clear();
+    for (const auto& f : measurement.features) {
+        if (!is_held_out(held_out, f.arrangement, f.level_g)) m.features.push_back(f);
+    }
+    for (const auto& s : measurement.selection.sweeps) {
+        if (!is_held_out(held_out, s.arrangement, s.level_g)) m.selection.sweeps.push_back(s);
+    }
+    for (const auto& d : measurement.damping) {
+        if (!is_held_out(held_out, d.arrangement, d.level_g)) m.damping.push_back(d);
+    }
+    return m;
+}
+
+/// ½ χ² of an evaluation on the fitting and the held-out levels.
+std::pair<double, double> split_misfit(const Evaluation& e, const Measurement& measurement,
+                                       const std::vector<std::pair<std::string, double>>& held) {
+    if (!e.error.empty()) throw std::runtime_error(e.error);
+    double fit = 0.0, out = 0.0;
+    for (std::size_t i = 0; i < measurement.features.size() && i < e.residuals.size(); ++i) {
+        const auto& f = measurement.features[i];
+        const double half_r2 = 0.5 * e.residuals[i] * e.residuals[i];
+        (is_held_out(held, f.arrangement, f.level_g) ? out : fit) += half_r2;
+    }
+    return {fit, out};
+}
+
+/// Two per level: the modal frequency and damping it identifies.
+double effective_samples(const Measurement& fitting) {
+    return 2.0 * static_cast<double>(std::max<std::size_t>(1, fitting.selection.sweeps.size()));
+}
+
+Evaluation evaluate_on(const bench::CampaignConfig& config, const std::vector<FreeParameter>& free,
+                       const std::vector<double>& values, const Measurement& measurement,
+                       const CalibrationOptions& options) {
+    EvaluatorOptions eo;
+    eo.threads = options.threads;
+    eo.cache_dir = options.cache_dir;
+    eo.simulate = options.simulate;
+    if (options.simulate) eo.fidelity = "hypothesis";
+    Evaluator evaluator(config, free, measurement, eo);
+    return evaluator.evaluate(values);
+}
+
+}  // namespace
+
+Simulation candidate_simulation(const bench::CampaignConfig& config) {
+    const bool predictable =
+        config.structure.excitation.kind == structure::ExcitationSpec::Kind::force &&
+        std::all_of(
+            config.campaign.dampers.begin(), config.campaign.dampers.end(),
+            [](const bench::DamperSpec& d) { return d.model != bench::DamperSpec::Model::dem; });
+    if (!predictable) return {};
+    return [](const bench::CampaignConfig& c, const bench::Selection& selection, int) {
+        bench::PredictContext context;
+        context.selection = selection;
+        return bench::predict_campaign(c, context);
+    };
+}
+
+HypothesisTest test_hypotheses(const bench::CampaignConfig& config, const Measurement& measurement,
+                               const std::vector<FeatureMismatch>& mismatches,
+                               const HypothesisOptions& options) {
+    HypothesisTest test;
+    test.ranking = rank_candidates(config, mismatches);
+    std::vector<std::string> arrangements;
+    for (const auto& s : measurement.selection.sweeps) {
+        if (std::find(arrangements.begin(), arrangements.end(), s.arrangement) ==
+            arrangements.end()) {
+            arrangements.push_back(s.arrangement);
+        }
+    }
+    for (const auto& a : arrangements) {
+        std::vector<double> levels;
+        for (const auto& s : measurement.selection.sweeps) {
+            if (s.arrangement == a) levels.push_back(s.level_g);
+        }
+        if (levels.size() >= 3) {
+            test.held_out.emplace_back(a, *std::max_element(levels.begin(), levels.end()));
+        }
+    }
+    const Measurement fitting = fitting_part(measurement, test.held_out);
+    const double n = effective_samples(fitting);
+
+    // Their own cache: the same config may be simulated coupled by a drift test.
+    CalibrationOptions calibration = options.calibration;
+    calibration.progress = {};
+    if (!calibration.cache_dir.empty()) calibration.cache_dir /= "hypotheses";
+    const Evaluation baseline = evaluate_on(config, {}, {}, measurement, calibration);
+    const auto [baseline_fit, baseline_held_out] =
+        split_misfit(baseline, measurement, test.held_out);
+
+    int tried = 0;
+    for (const auto& candidate : test.ranking) {
+        if (tried >= options.candidates || candidate.score <= 0.0) break;
+        ++tried;
+        CandidateFit fit;
+        fit.rank = candidate;
+        fit.baseline_fit = baseline_fit;
+        fit.baseline_held_out = baseline_held_out;
+        fit.baseline_bic = 2.0 * baseline_fit;
+        try {
+            bench::CampaignConfig on = config;
+            const auto keys = candidate.entry->switch_on(on);
+            fit.free = parse_free_parameters(on, keys, "catalogue " + candidate.entry->name);
+            const CalibrationResult r = calibrate(on, fitting, fit.free, calibration);
+            fit.values = r.best.values;
+            fit.findings = r.findings;
+            fit.simulations = r.simulations;
+            const Evaluation at = evaluate_on(on, fit.free, fit.values, measurement, calibration);
+            std::tie(fit.fit, fit.held_out) = split_misfit(at, measurement, test.held_out);
+            fit.bic = 2.0 * fit.fit + static_cast<double>(fit.free.size()) * std::log(n);
+            fit.improved = with_values(on, fit.free, fit.values);
+        } catch (const std::exception& e) {
+            fit.error = e.what();
+            fit.bic = INFINITY;
+        }
+        if (options.calibration.progress) {
+            options.calibration.progress(
+                candidate.entry->name + ": " +
+                (fit.error.empty() ? "BIC " + number(fit.baseline_bic) + " -> " + number(fit.bic)
+                                   : "not fitted: " + fit.error));
+        }
+        test.fits.push_back(std::move(fit));
+    }
+    std::stable_sort(test.fits.begin(), test.fits.end(),
+                     [](const CandidateFit& a, const CandidateFit& b) { return a.bic < b.bic; });
+    if (!test.fits.empty() && test.fits.front().error.empty()) {
+        const auto& best = test.fits.front();
+        const bool better = best.baseline_bic - best.bic > kBicStrong;
+        const bool holds = test.held_out.empty() || best.held_out < best.baseline_held_out;
+        if (better && holds) test.winner = 0;
+    }
+    if (test.winner == 0) {
+        const auto& w = test.fits.front();
+        std::string s =
+            "the model left out " + w.rank.entry->left_out + " (" + w.rank.entry->name + "): ";
+        for (std::size_t j = 0; j < w.free.size(); ++j) {
+            s += (j ? ", " : "") + w.free[j].path + " = " + number(w.values[j]);
+            if (j < w.findings.size()) {
+                s += " [" + number(w.findings[j].lo95) + ", " + number(w.findings[j].hi95) + "]";
+            }
+        }
+        s +=
+            "; misfit " + number(w.baseline_fit) + " -> " + number(w.fit) + " on the fitted levels";
+        if (!test.held_out.empty()) {
+            s += ", " + number(w.baseline_held_out) + " -> " + number(w.held_out) + " held out";
+        }
+        s += ", BIC " + number(w.baseline_bic) + " -> " + number(w.bic);
+        test.sentence = s;
+    } else if (test.fits.empty()) {
+        test.sentence = "no physics of the catalogue has the signature of the mismatch";
+    } else {
+        test.sentence =
+            "no physics of the catalogue explains the mismatch: the best, " +
+            test.fits.front().rank.entry->name +
+            (test.fits.front().error.empty()
+                 ? ", lowers the BIC from " + number(test.fits.front().baseline_bic) + " to " +
+                       number(test.fits.front().bic) + " and the held-out misfit from " +
+                       number(test.fits.front().baseline_held_out) + " to " +
+                       number(test.fits.front().held_out)
+                 : ", could not be fitted: " + test.fits.front().error);
+    }
+    return test;
+}
+
+}  // namespace sb::correlation

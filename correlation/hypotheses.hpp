@@ -1,0 +1,69 @@
+// The third and fourth steps of a diagnosis (docs/diagnosis.md): the catalogue's physics
+// ranked by how their signatures match the located mismatch, the best few switched on and
+// fitted on all but the highest level of each arrangement, compared by BIC, and confirmed on
+// the held-out levels.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "correlation/calibration.hpp"
+#include "correlation/physics_catalogue.hpp"
+
+namespace sb::correlation {
+
+struct HypothesisOptions {
+    int candidates = 3;  ///< the best-ranked rows with a positive score fitted, at most
+    /// The fits' search, threads, cache and simulation (the fast prediction where the config
+    /// allows it: candidate_simulation()).
+    CalibrationOptions calibration;
+};
+
+/// One candidate switched on and fitted.
+struct CandidateFit {
+    CandidateScore rank;
+    std::vector<FreeParameter> free;
+    std::vector<double> values;              ///< fitted on the fitting levels
+    std::vector<ParameterFinding> findings;  ///< their 95 % intervals (when found)
+    /// ½ χ² of the features of the fitting levels and of the held-out levels, for the
+    /// baseline config and for this candidate at its fitted values.
+    double baseline_fit = 0.0, fit = 0.0;
+    double baseline_held_out = 0.0, held_out = 0.0;
+    /// BIC = χ² + k ln n on the fitting levels, n the effective sample size (two per level:
+    /// the modal frequency and damping each level identifies; the FRF points around them are
+    /// correlated through those two) [-].
+    double baseline_bic = 0.0, bic = 0.0;
+    int simulations = 0;
+    bench::CampaignConfig improved;  ///< the config with it on at the fitted values
+    std::string error;               ///< why it could not be fitted; empty when it was
+};
+
+struct HypothesisTest {
+    std::vector<CandidateScore> ranking;  ///< every row that applies, best first
+    /// Per arrangement, its highest level when it has three or more (else none).
+    std::vector<std::pair<std::string, double>> held_out;
+    std::vector<CandidateFit> fits;  ///< the fitted candidates, lowest BIC first
+    /// The first fit when it lowers the BIC by more than kBicStrong and the held-out misfit;
+    /// -1 when none does.
+    int winner = -1;
+    std::string sentence;  ///< in words
+};
+
+/// A BIC lower by this much is strong evidence (Kass and Raftery 1995) [-].
+inline constexpr double kBicStrong = 6.0;
+
+/// The simulation hypotheses are fitted on: the describing-function prediction of
+/// bench/prediction.hpp when every damper of `config` is rigid or a describing function and
+/// the structure is driven by a force (milliseconds to seconds per campaign), else empty (the
+/// coupled campaign).
+Simulation candidate_simulation(const bench::CampaignConfig& config);
+
+/// Ranks the catalogue against `mismatches`, fits the best options.candidates with a positive
+/// score (each switched on in a copy of `config`, its keys freed within their intervals) on
+/// the measurement without its held-out levels, and compares them. Throws what calibrate
+/// throws for the baseline's evaluation; a candidate that cannot be fitted keeps its error.
+HypothesisTest test_hypotheses(const bench::CampaignConfig& config, const Measurement& measurement,
+                               const std::vector<FeatureMismatch>& mismatches,
+                               const HypothesisOptions& options);
+
+}  // namespace sb::correlation

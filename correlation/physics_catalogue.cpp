@@ -1,0 +1,148 @@
+#include "correlation/physics_catalogue.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace sb::correlation {
+namespace {
+
+using Kind = structure::StructureSpec::Kind;
+
+/// Name of the mass the sensor-mass row adds at the control point.
+constexpr const char* kSensorMass = "sensor mass (catalogue)";
+
+std::vector<CatalogueEntry> build_catalogue() {
+    std::vector<CatalogueEntry> rows;
+    rows.push_back(
+        {"background-damping",
+         "the rig's background damping",
+         "Viscous damping of the bare structure and rig (material, joints, cables, air at "
+         "small amplitude): the same damping ratio added at every level, dominant below the "
+         "particles' lift-off.",
+         {{LevelFeature::damping_ratio, ScalingShape::constant, +1}},
+         [](bench::CampaignConfig&) {
+             return std::vector<std::string>{"structure.damping.default_ratio"};
+         },
+         [](const bench::CampaignConfig& c) {
+             return c.structure.damping.model == structure::DampingSpec::Model::modal &&
+                    c.structure.damping.modal_ratios.empty();
+         }});
+    rows.push_back(
+        {"air-drag",
+         "the beam's aerodynamic drag",
+         "Quadratic drag of the air on the beam's wide face, 1/2 rho C_D b |v| v per unit "
+         "length (physics.air_drag): damping that grows in proportion to the amplitude, the "
+         "opposite of a particle damper's in its collisional regime.",
+         {{LevelFeature::damping_ratio, ScalingShape::linear, +1}},
+         [](bench::CampaignConfig&) {
+             return std::vector<std::string>{"physics.air_drag.drag_coefficient"};
+         },
+         [](const bench::CampaignConfig& c) {
+             return c.structure.kind == Kind::beam && !c.physics.air_drag.on();
+         }});
+    rows.push_back(
+        {"sensor-mass",
+         "the mass of the sensor at the control point",
+         "An accelerometer and its cable on the beam at the control point that the model "
+         "lacks: every level's natural frequency lower by the same amount, the damping "
+         "unchanged.",
+         {{LevelFeature::natural_frequency, ScalingShape::constant, -1}},
+         [](bench::CampaignConfig& c) {
+             structure::LumpedMass m;
+             m.name = kSensorMass;
+             m.point = c.campaign.control_point;
+             m.mass_kg = 1e-4;
+             c.structure.beam.masses.push_back(m);
+             return std::vector<std::string>{"structure.beam.masses[" +
+                                             std::to_string(c.structure.beam.masses.size() - 1) +
+                                             "].mass_kg=0.0001:0.05"};
+         },
+         [](const bench::CampaignConfig& c) {
+             const auto& masses = c.structure.beam.masses;
+             return c.structure.kind == Kind::beam &&
+                    std::none_of(masses.begin(), masses.end(),
+                                 [](const auto& m) { return m.name == kSensorMass; });
+         }});
+    return rows;
+}
+
+/// The BIC of `shape` among a mismatch's fitted shapes (infinite when not fitted).
+double bic_of(const FeatureMismatch& m, ScalingShape shape) {
+    for (const auto& fit : m.scaling) {
+        if (fit.shape == shape) return fit.bic;
+    }
+    return INFINITY;
+}
+
+/// The sign of the residual's mean weighted by 1/σ².
+int residual_sign(const FeatureMismatch& m) {
+    double sum = 0.0;
+    for (const auto& r : m.residuals) sum += r.residual / (r.sigma * r.sigma);
+    return sum > 0.0 ? +1 : sum < 0.0 ? -1 : 0;
+}
+
+}  // namespace
+
+const std::vector<CatalogueEntry>& physics_catalogue() {
+    static const std::vector<CatalogueEntry> rows = build_catalogue();
+    return rows;
+}
+
+const CatalogueEntry& catalogue_entry(std::string_view name) {
+    std::string names;
+    for (const auto& e : physics_catalogue()) {
+        if (e.name == name) return e;
+        names += (names.empty() ? "" : ", ") + e.name;
+    }
+    throw std::invalid_argument("no physics '" + std::string(name) + "' in the catalogue (" +
+                                names + ")");
+}
+
+std::vector<CandidateScore> rank_candidates(const bench::CampaignConfig& config,
+                                            const std::vector<FeatureMismatch>& mismatches) {
+    std::vector<CandidateScore> out;
+    for (const auto& entry : physics_catalogue()) {
+        if (entry.applies && !entry.applies(config)) continue;
+        CandidateScore c;
+        c.entry = &entry;
+        std::string why;
+        const auto add = [&](double points, const std::string& text) {
+            c.score += points;
+            why += (why.empty() ? "" : "; ") + text;
+        };
+        for (const auto& m : mismatches) {
+            const std::string what = m.arrangement + " " + level_feature_name(m.feature);
+            const auto expected =
+                std::find_if(entry.signature.begin(), entry.signature.end(),
+                             [&](const FeatureSignature& s) { return s.feature == m.feature; });
+            if (expected == entry.signature.end()) {
+                const bool watched = m.feature == LevelFeature::damping_ratio ||
+                                     m.feature == LevelFeature::natural_frequency;
+                if (watched && m.beyond_noise)
+                    add(-1.0, what + " disagrees, which it leaves alone");
+                continue;
+            }
+            if (!m.beyond_noise) {
+                add(-1.0, what + " agrees, which it would move");
+                continue;
+            }
+            if (residual_sign(m) != expected->sign) {
+                add(-2.0, what + " is off the other way");
+                continue;
+            }
+            add(2.0, what + " is off the way it moves it");
+            if (!m.scaling.empty() && bic_of(m, expected->shape) <= m.scaling.front().bic + 2.0) {
+                add(1.0, "and scales " + scaling_shape_name(expected->shape) + " as it does");
+            }
+        }
+        c.reason = why.empty() ? "no feature it moves was compared" : why;
+        out.push_back(c);
+    }
+    std::stable_sort(out.begin(), out.end(), [](const CandidateScore& a, const CandidateScore& b) {
+        return a.score > b.score;
+    });
+    return out;
+}
+
+}  // namespace sb::correlation
