@@ -29,6 +29,7 @@ struct DiagnoseArgs {
     int budget = 15;
     std::string mode = "direct";
     int hypotheses = 3;
+    int held_out = 1;
     std::string out_dir;
     int threads = 0;
     correlation::StatedUncertainty stated;
@@ -82,6 +83,7 @@ int run(const DiagnoseArgs& args) {
                                  : std::filesystem::path(args.out_dir);
         options.calibration.search.budget = args.budget;
         options.hypotheses = args.hypotheses;
+        options.held_out_levels = args.held_out;
         options.calibration.search.mode = args.mode == "surrogate"
                                               ? correlation::SearchMode::surrogate
                                               : correlation::SearchMode::direct;
@@ -181,6 +183,10 @@ void register_diagnose_command(CLI::App& app, int& exit_code) {
                     "by signature, each switched on and fitted on all but the highest level "
                     "(default 3; 0: none)")
         ->check(CLI::Range(0, 100));
+    cmd->add_option("--held-out", args->held_out,
+                    "highest levels of each arrangement the hypotheses are not fitted on but "
+                    "checked against (default 1; kept only where two levels or more remain)")
+        ->check(CLI::Range(0, 100));
     cmd->add_option("-o,--out", args->out_dir,
                     "output directory (default: out/<campaign name>-diagnosis)");
     cmd->add_option("-j,--threads", args->threads, "threads (default: all cores)")
@@ -199,6 +205,9 @@ void register_diagnose_command(CLI::App& app, int& exit_code) {
         }
         if (args->hypotheses != 3) {
             args->command_line += " --hypotheses " + std::to_string(args->hypotheses);
+        }
+        if (args->held_out != 1) {
+            args->command_line += " --held-out " + std::to_string(args->held_out);
         }
         if (!args->out_dir.empty()) args->command_line += " --out " + args->out_dir;
         args->command_line += overrides_text(args->overrides);

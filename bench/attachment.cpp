@@ -173,6 +173,40 @@ DescribingFunction::Value AirDragStrip::describing(double acceleration_m_s2,
     return value;
 }
 
+MicroslipDashpot::MicroslipDashpot(const Eigen::Vector3d& direction, double damping_n_s_per_m,
+                                   double exponent, double reference_velocity_m_s)
+    : direction_(direction.normalized()),
+      damping_n_s_per_m_(damping_n_s_per_m),
+      exponent_(exponent),
+      reference_velocity_m_s_(reference_velocity_m_s) {}
+
+PointLoad MicroslipDashpot::step(const PointMotion& motion, double) const {
+    const double v = direction_.dot(motion.velocity_m_s);
+    const double c =
+        damping_n_s_per_m_ * std::pow(std::abs(v) / reference_velocity_m_s_, exponent_);
+    return {-c * v * direction_, Eigen::Vector3d::Zero()};
+}
+
+DescribingFunction::Value MicroslipDashpot::describing(double acceleration_m_s2,
+                                                       double frequency_hz) const {
+    const double w = 2.0 * std::numbers::pi * frequency_hz;
+    const double v = acceleration_m_s2 / w;
+    const double chi = exponent_;
+    // The Fourier sine coefficients of |sin t|^chi sin t: b_k = (4 / pi) int_0^(pi/2)
+    // sin^(1 + chi) t sin(k t) dt. With I_n = int_0^(pi/2) sin^n = (sqrt(pi) / 2)
+    // Gamma((n + 1) / 2) / Gamma(n / 2 + 1) and I_(n+2) = (n + 1) / (n + 2) I_n:
+    // b_1 = (4 / pi) I_(2 + chi) = kappa, and sin 3t = 3 sin t - 4 sin^3 t gives
+    // b_3 / b_1 = 3 - 4 (3 + chi) / (4 + chi) = -chi / (4 + chi).
+    const double kappa = 2.0 / std::sqrt(std::numbers::pi) * std::tgamma((3.0 + chi) / 2.0) /
+                         std::tgamma((4.0 + chi) / 2.0);
+    const double c_eq = damping_n_s_per_m_ * kappa * std::pow(v / reference_velocity_m_s_, chi);
+    DescribingFunction::Value value;
+    value.apparent_mass_kg = std::complex<double>(0.0, -c_eq / w);
+    value.h2_ratio = 0.0;
+    value.h3_ratio = chi / (4.0 + chi);
+    return value;
+}
+
 PointLoad step(Attachment& attachment, const PointMotion& motion, double dt_s) {
     return std::visit([&](auto& m) { return m.step(motion, dt_s); }, attachment.model);
 }

@@ -157,7 +157,7 @@ class DescribingFunctionDamper {
 };
 
 /// A strip of the beam under quadratic air drag, lumped at its midpoint (physics.air_drag;
-/// bench/air_drag.hpp): F = -k |v_n| v_n n along the wide face's normal n, with
+/// bench/physics_attachments.hpp): F = -k |v_n| v_n n along the wide face's normal n, with
 /// k = 1/2 rho C_D b l for a strip of width b and length l. Stateless; its load is that of the
 /// motion at the step's start, applied over the step (the drag changes little in a step of
 /// a few hundredths of a period at most).
@@ -169,9 +169,16 @@ class AirDragStrip {
     [[nodiscard]] PointLoad weight() const { return {}; }
     [[nodiscard]] AttachmentState state() const { return {}; }
     [[nodiscard]] AttachmentState state_at(const PointMotion&) const { return {}; }
-    void restore(const AttachmentState& s) const { no_particles(s); }
-    void restore_at(const AttachmentState& s, const PointMotion&) const { no_particles(s); }
+    void restore(const AttachmentState& s) const { no_state(s); }
+    void restore_at(const AttachmentState& s, const PointMotion&) const { no_state(s); }
     void set_frequency(double) {}
+
+    /// A stateless attachment's state holds nothing: never ignored when it does.
+    static void no_state(const AttachmentState& s) {
+        if (s.dem || s.describing) {
+            throw std::invalid_argument("a stateless attachment was given a state");
+        }
+    }
 
     /// Its describing function along n at the peak acceleration |a1| [m/s^2] and frequency
     /// [Hz]: for v = V sin(w t) the fundamental of -k |v| v is -(8 / 3 pi) k V v, so
@@ -183,18 +190,45 @@ class AirDragStrip {
     [[nodiscard]] double coefficient_kg_m() const { return coefficient_kg_m_; }
 
   private:
-    static void no_particles(const AttachmentState& s) {
-        if (s.dem || s.describing) {
-            throw std::invalid_argument("an air-drag strip carries no state, this one has some");
-        }
-    }
-
     Eigen::Vector3d normal_;
     double coefficient_kg_m_;
 };
 
-using AttachmentModel =
-    std::variant<DemDamper, RigidParticles, DescribingFunctionDamper, AirDragStrip>;
+/// Microslip in a joint as a power-law dashpot at its point (physics.microslip;
+/// bench/physics_attachments.hpp): F = -c (|v_d| / v_ref)^chi v_d d along the excitation
+/// direction d. Stateless, explicit as the air-drag strip.
+class MicroslipDashpot {
+  public:
+    MicroslipDashpot(const Eigen::Vector3d& direction, double damping_n_s_per_m, double exponent,
+                     double reference_velocity_m_s);
+
+    PointLoad step(const PointMotion& motion, double dt_s) const;
+    [[nodiscard]] PointLoad weight() const { return {}; }
+    [[nodiscard]] AttachmentState state() const { return {}; }
+    [[nodiscard]] AttachmentState state_at(const PointMotion&) const { return {}; }
+    void restore(const AttachmentState& s) const { AirDragStrip::no_state(s); }
+    void restore_at(const AttachmentState& s, const PointMotion&) const {
+        AirDragStrip::no_state(s);
+    }
+    void set_frequency(double) {}
+
+    /// Its describing function along d at the peak acceleration |a1| [m/s^2] and frequency
+    /// [Hz]: for v = V sin(w t), V = |a1| / w, the fundamental of |v|^chi v is
+    /// kappa(chi) V^chi v with kappa = (2 / sqrt(pi)) Gamma((3 + chi) / 2) / Gamma((4 + chi) / 2)
+    /// (1 at chi = 0, 8 / 3 pi at chi = 1), so M = -i c kappa (V / v_ref)^chi / w;
+    /// |Q3| / |Q1| = chi / (4 + chi) from the same Fourier series, no even harmonic.
+    [[nodiscard]] DescribingFunction::Value describing(double acceleration_m_s2,
+                                                       double frequency_hz) const;
+
+  private:
+    Eigen::Vector3d direction_;
+    double damping_n_s_per_m_;
+    double exponent_;
+    double reference_velocity_m_s_;
+};
+
+using AttachmentModel = std::variant<DemDamper, RigidParticles, DescribingFunctionDamper,
+                                     AirDragStrip, MicroslipDashpot>;
 
 /// A model at a named point.
 struct Attachment {

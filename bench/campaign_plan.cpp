@@ -5,9 +5,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "bench/air_drag.hpp"
 #include "bench/arrangement.hpp"
 #include "bench/frequency_grid.hpp"
+#include "bench/physics_attachments.hpp"
 #include "config/errors.hpp"
 #include "config/write.hpp"
 #include "core/units.hpp"

@@ -332,6 +332,39 @@ std::shared_ptr<const config::Table> air_drag_table() {
     return t.build();
 }
 
+std::shared_ptr<const config::Table> microslip_table() {
+    TableBuilder<MicroslipSpec> t(
+        "microslip in a joint",
+        "Microslip in a joint or clamp as a power-law dashpot at a named point, along the "
+        "excitation direction: f = -c (|v| / v_ref)^chi v. Its equivalent damping grows like "
+        "the amplitude to the power chi (Iwan-type microslip: 0 < chi < 1).");
+    const auto on = [](const MicroslipSpec& m) { return m.on(); };
+    t.string(
+        "point", [](MicroslipSpec & m) -> auto& { return m.point; },
+        "named point of the joint (required when damping_n_s_per_m > 0)");
+    t.number(
+         "damping_n_s_per_m", [](MicroslipSpec & m) -> auto& { return m.damping_n_s_per_m; },
+         "dashpot coefficient c at the reference velocity; 0 turns the microslip off")
+        .unit("N s/m")
+        .bound(Bound::non_negative())
+        .calibrated_within(0.0, 20.0);
+    t.number(
+         "exponent", [](MicroslipSpec & m) -> auto& { return m.exponent; },
+         "power chi of the velocity ratio: damping grows like the amplitude^chi")
+        .unit("-")
+        .bound(Bound::closed(0.0, 2.0))
+        .calibrated_within(0.0, 1.5)
+        .when(on, "only with damping_n_s_per_m > 0");
+    t.number(
+         "reference_velocity_m_s",
+         [](MicroslipSpec & m) -> auto& { return m.reference_velocity_m_s; },
+         "velocity at which the dashpot's coefficient is c")
+        .unit("m/s")
+        .bound(Bound::positive())
+        .when(on, "only with damping_n_s_per_m > 0");
+    return t.build();
+}
+
 std::shared_ptr<const config::Table> physics_table() {
     TableBuilder<PhysicsSpec> t(
         "physics a model may leave out",
@@ -339,6 +372,8 @@ std::shared_ptr<const config::Table> physics_table() {
         "diagnosis switches on and fits (docs/diagnosis.md, the physics catalogue).");
     t.table(
         "air_drag", [](PhysicsSpec & p) -> auto& { return p.air_drag; }, air_drag_table());
+    t.table(
+        "microslip", [](PhysicsSpec & p) -> auto& { return p.microslip; }, microslip_table());
     return t.build();
 }
 
@@ -444,6 +479,13 @@ std::shared_ptr<const config::Table> build_campaign_schema() {
                            config::number_text(c.physics.air_drag.drag_coefficient),
                            "needs a beam structure (structure.kind = \"beam\")",
                            "the drag acts on the beam's wide face"});
+        }
+        if (c.physics.microslip.on()) {
+            const auto names = point_names(c.structure);
+            if (std::find(names.begin(), names.end(), c.physics.microslip.point) == names.end()) {
+                out.push_back({"physics.microslip.point", config::quoted(c.physics.microslip.point),
+                               "must name a point of the structure", "the joint's point"});
+            }
         }
         return out;
     });

@@ -3,6 +3,8 @@
 // default: a config without [physics] simulates what it did before.
 #pragma once
 
+#include <string>
+
 #include "core/violation.hpp"
 
 namespace sb::bench {
@@ -19,8 +21,22 @@ struct AirDragSpec {
     [[nodiscard]] bool on() const { return drag_coefficient > 0.0; }
 };
 
+/// Microslip in a joint or clamp as a power-law dashpot at a point, along the excitation
+/// direction: f = -c (|v| / v_ref)^chi v. Its equivalent damping grows like the amplitude to
+/// the power chi (Iwan-type microslip gives 0 < chi < 1; research note on mismatch
+/// diagnosis, section 2), without the stiffness loss a full Iwan element adds.
+struct MicroslipSpec {
+    std::string point;                    ///< named point of the joint
+    double damping_n_s_per_m = 0.0;       ///< c at v = v_ref; 0: off [N s/m]
+    double exponent = 0.5;                ///< chi [-]
+    double reference_velocity_m_s = 0.1;  ///< v_ref [m/s]
+
+    [[nodiscard]] bool on() const { return damping_n_s_per_m > 0.0; }
+};
+
 struct PhysicsSpec {
     AirDragSpec air_drag;
+    MicroslipSpec microslip;
 };
 
 }  // namespace sb::bench

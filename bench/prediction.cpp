@@ -12,8 +12,8 @@
 #include <memory>
 #include <sstream>
 
-#include "bench/air_drag.hpp"
 #include "bench/arrangement.hpp"
+#include "bench/physics_attachments.hpp"
 #include "bench/resolved_config.hpp"
 #include "config/dotted_path.hpp"
 #include "config/errors.hpp"
@@ -350,10 +350,10 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
                                      d.characterization_file.string() + " (characterised config " +
                                      table.config_hash + ")");
         }
-        for (const auto& a : air_drag_attachments(config)) {
-            const auto strip = std::get<AirDragStrip>(a.model);
-            dampers.push_back({a.point, [strip](double acceleration, double f) {
-                                   return strip.describing(acceleration, f);
+        for (auto& a : physics_attachments(config)) {
+            auto shared = std::make_shared<const Attachment>(std::move(a));
+            dampers.push_back({shared->point, [shared](double acceleration, double f) {
+                                   return physics_describing(*shared, acceleration, f);
                                }});
         }
         for (double f : task.frequencies_hz) {

@@ -10,13 +10,13 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "bench/air_drag.hpp"
 #include "bench/arrangement.hpp"
 #include "bench/attachment.hpp"
 #include "bench/coupled_specimen.hpp"
 #include "bench/driven_mode.hpp"
 #include "bench/grid_refinement.hpp"
 #include "bench/linear_estimate.hpp"
+#include "bench/physics_attachments.hpp"
 #include "bench/prediction.hpp"
 #include "bench/specimen_plant.hpp"
 #include "bench/sweep_checkpoint.hpp"
@@ -292,7 +292,7 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
 
     // The catalogue physics at points of their own (after the dampers, whose indices the
     // checkpoints and the energy ledger use).
-    for (auto& strip : air_drag_attachments(config)) {
+    for (auto& strip : physics_attachments(config)) {
         damper_names.push_back(strip.name);
         attachments.push_back(std::move(strip));
     }

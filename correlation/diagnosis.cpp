@@ -151,6 +151,7 @@ DiagnosisResult diagnose(const bench::CampaignConfig& config, const std::filesys
         say("fitting the catalogue's physics whose signatures match");
         HypothesisOptions ho;
         ho.candidates = options.hypotheses;
+        ho.held_out_levels = options.held_out_levels;
         ho.calibration = options.calibration;
         ho.calibration.simulate = options.hypothesis_simulate ? options.hypothesis_simulate
                                                               : candidate_simulation(config);

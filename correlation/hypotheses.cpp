@@ -105,8 +105,11 @@ HypothesisTest test_hypotheses(const bench::CampaignConfig& config, const Measur
         for (const auto& s : measurement.selection.sweeps) {
             if (s.arrangement == a) levels.push_back(s.level_g);
         }
-        if (levels.size() >= 3) {
-            test.held_out.emplace_back(a, *std::max_element(levels.begin(), levels.end()));
+        const auto hold = static_cast<std::size_t>(std::max(0, options.held_out_levels));
+        if (hold == 0 || levels.size() < hold + 2) continue;
+        std::sort(levels.begin(), levels.end());
+        for (std::size_t k = levels.size() - hold; k < levels.size(); ++k) {
+            test.held_out.emplace_back(a, levels[k]);
         }
     }
     const Measurement fitting = fitting_part(measurement, test.held_out);

@@ -14,6 +14,9 @@ namespace sb::correlation {
 
 struct HypothesisOptions {
     int candidates = 3;  ///< the best-ranked rows with a positive score fitted, at most
+    /// The highest levels of each arrangement held out of the fits, when it has at least two
+    /// more than these to fit on.
+    int held_out_levels = 1;
     /// The fits' search, threads, cache and simulation (the fast prediction where the config
     /// allows it: candidate_simulation()).
     CalibrationOptions calibration;
@@ -40,7 +43,7 @@ struct CandidateFit {
 
 struct HypothesisTest {
     std::vector<CandidateScore> ranking;  ///< every row that applies, best first
-    /// Per arrangement, its highest level when it has three or more (else none).
+    /// Per arrangement, its options.held_out_levels highest levels when it has two more.
     std::vector<std::pair<std::string, double>> held_out;
     std::vector<CandidateFit> fits;  ///< the fitted candidates, lowest BIC first
     /// The first fit when it lowers the BIC by more than kBicStrong and the held-out misfit;

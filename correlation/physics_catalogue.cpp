@@ -25,8 +25,14 @@ std::vector<CatalogueEntry> build_catalogue() {
              return std::vector<std::string>{"structure.damping.default_ratio"};
          },
          [](const bench::CampaignConfig& c) {
+             // A lumped model with dashpots takes its damping from them, not from the ratio.
+             const auto& springs = c.structure.lumped.springs;
+             const bool dashpots = c.structure.kind == Kind::lumped &&
+                                   std::any_of(springs.begin(), springs.end(), [](const auto& s) {
+                                       return s.damping_n_s_per_m > 0.0;
+                                   });
              return c.structure.damping.model == structure::DampingSpec::Model::modal &&
-                    c.structure.damping.modal_ratios.empty();
+                    c.structure.damping.modal_ratios.empty() && !dashpots;
          }});
     rows.push_back(
         {"air-drag",
@@ -41,6 +47,22 @@ std::vector<CatalogueEntry> build_catalogue() {
          [](const bench::CampaignConfig& c) {
              return c.structure.kind == Kind::beam && !c.physics.air_drag.on();
          }});
+    rows.push_back(
+        {"joint-microslip",
+         "microslip in a joint or clamp",
+         "Partial slip in a bolted joint or a clamp (Iwan-type): damping that grows like a power "
+         "of the amplitude below one, as a power-law dashpot at the control point "
+         "(physics.microslip; a single mode's damping does not depend on where along it the "
+         "dashpot sits, its coefficient absorbs the mode shape).",
+         {{LevelFeature::damping_ratio, ScalingShape::power, +1}},
+         [](bench::CampaignConfig& c) {
+             // On from the start (its exponent applies only then), barely.
+             c.physics.microslip.point = c.campaign.control_point;
+             c.physics.microslip.damping_n_s_per_m = 1e-4;
+             return std::vector<std::string>{"physics.microslip.damping_n_s_per_m=0.0001:20",
+                                             "physics.microslip.exponent"};
+         },
+         [](const bench::CampaignConfig& c) { return !c.physics.microslip.on(); }});
     rows.push_back(
         {"sensor-mass",
          "the mass of the sensor at the control point",

@@ -1,8 +1,10 @@
-// The beam's air drag (physics.air_drag): the strip's describing function against the Fourier
-// series of |v| v, the damping a response-controlled campaign identifies against the
-// single-mode equivalent linearisation, its growth with the level, the prediction against
-// the run, and how much the number of strips moves it.
-#include "bench/air_drag.hpp"
+// The catalogue physics as attachments. The beam's air drag (physics.air_drag): the strip's
+// describing function against the Fourier series of |v| v, the damping a response-controlled
+// campaign identifies against the single-mode equivalent linearisation, its growth with the
+// level, the prediction against the run, and how much the number of strips moves it. The
+// microslip dashpot (physics.microslip): its describing function against the Fourier series
+// of |v|^chi v, the prediction against the run.
+#include "bench/physics_attachments.hpp"
 
 #include <gtest/gtest.h>
 
@@ -136,6 +138,51 @@ TEST(AirDrag, TwentyFourStripsGiveTheDampingOfNinetySixWithinHalfAPercent) {
     const double coarse = single_mode_drag_damping(linear_bench(20.0, 24), 1.0);
     const double fine = single_mode_drag_damping(linear_bench(20.0, 96), 1.0);
     EXPECT_NEAR(coarse / fine, 1.0, 0.005) << coarse << " " << fine;
+}
+
+TEST(Microslip, TheDashpotsDescribingFunctionIsTheFundamentalOfItsForce) {
+    for (const double chi : {0.0, 0.5, 1.0, 1.5}) {
+        const MicroslipDashpot dashpot(Eigen::Vector3d::UnitZ(), 3.0, chi, 0.1);
+        const double f = 80.0, w = 2.0 * std::numbers::pi * f, v0 = 0.07;
+        const int n = 8192;
+        double b1 = 0.0, b3 = 0.0;
+        for (int i = 0; i < n; ++i) {
+            const double theta = 2.0 * std::numbers::pi * (i + 0.5) / n;
+            PointMotion motion;
+            motion.velocity_m_s = Eigen::Vector3d(0.0, 0.2, v0 * std::sin(theta));
+            const PointLoad load = dashpot.step(motion, 1e-5);
+            b1 += 2.0 / n * load.force_n.z() * std::sin(theta);
+            b3 += 2.0 / n * load.force_n.z() * std::sin(3.0 * theta);
+        }
+        // F1 = -M a1 with v1 = -i v0 (v0 sin), a1 = i w v1 = w v0 and F1 = -i b1: Im M = b1 / w v0.
+        const double expected = b1 / (w * v0);
+        const auto value = dashpot.describing(w * v0, f);
+        EXPECT_NEAR(value.apparent_mass_kg.imag(), expected, 1e-5 * std::abs(expected)) << chi;
+        EXPECT_NEAR(value.h3_ratio, std::abs(b3 / b1), 1e-4) << chi;
+    }
+}
+
+TEST(Microslip, ThePredictionBalancesTheDashpotAsTheRunStepsIt) {
+    auto config = linear_bench(0.0);
+    config.physics.microslip.point = "damper";
+    config.physics.microslip.damping_n_s_per_m = 0.05;
+    config.physics.microslip.exponent = 0.5;
+    CampaignContext context;
+    context.threads = 2;
+    const CampaignResult bare = run_campaign(linear_bench(0.0), context);
+    const CampaignResult run = run_campaign(config, context);
+    const CampaignResult predicted = predict_campaign(config, {});
+    double added[2];
+    for (int k = 0; k < 2; ++k) {
+        const double level = k == 0 ? 1.0 : 3.0;
+        EXPECT_NEAR(circle_fit_damping(predicted, level), circle_fit_damping(run, level),
+                    0.01 * circle_fit_damping(run, level))
+            << level << " g";
+        added[k] = circle_fit_damping(run, level) - circle_fit_damping(bare, level);
+        EXPECT_GT(added[k], 0.0) << level << " g";
+    }
+    // At a response-controlled level the dashpot's damping grows like the amplitude^chi.
+    EXPECT_NEAR(added[1] / added[0], std::sqrt(3.0), 0.03 * std::sqrt(3.0));
 }
 
 }  // namespace
