@@ -207,6 +207,28 @@ DescribingFunction::Value MicroslipDashpot::describing(double acceleration_m_s2,
     return value;
 }
 
+CubicSpring::CubicSpring(const Eigen::Vector3d& direction, double stiffness_n_per_m3,
+                         const Eigen::Vector3d& rest_position_m)
+    : direction_(direction.normalized()),
+      stiffness_n_per_m3_(stiffness_n_per_m3),
+      rest_position_m_(rest_position_m) {}
+
+PointLoad CubicSpring::step(const PointMotion& motion, double) const {
+    const double u = direction_.dot(motion.position_m - rest_position_m_);
+    return {-stiffness_n_per_m3_ * u * u * u * direction_, Eigen::Vector3d::Zero()};
+}
+
+DescribingFunction::Value CubicSpring::describing(double acceleration_m_s2,
+                                                  double frequency_hz) const {
+    const double w = 2.0 * std::numbers::pi * frequency_hz;
+    const double u = acceleration_m_s2 / (w * w);
+    DescribingFunction::Value value;
+    value.apparent_mass_kg = -0.75 * stiffness_n_per_m3_ * u * u / (w * w);
+    value.h2_ratio = 0.0;
+    value.h3_ratio = 1.0 / 3.0;
+    return value;
+}
+
 PointLoad step(Attachment& attachment, const PointMotion& motion, double dt_s) {
     return std::visit([&](auto& m) { return m.step(motion, dt_s); }, attachment.model);
 }

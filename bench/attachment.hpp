@@ -227,8 +227,39 @@ class MicroslipDashpot {
     double reference_velocity_m_s_;
 };
 
+/// A hardening cubic spring from its point to the fixed frame (physics.cubic_spring;
+/// bench/physics_attachments.hpp): F = -k3 u^3 d with u = d . (x - x_rest). Stateless,
+/// explicit as the air-drag strip.
+class CubicSpring {
+  public:
+    CubicSpring(const Eigen::Vector3d& direction, double stiffness_n_per_m3,
+                const Eigen::Vector3d& rest_position_m);
+
+    PointLoad step(const PointMotion& motion, double dt_s) const;
+    [[nodiscard]] PointLoad weight() const { return {}; }
+    [[nodiscard]] AttachmentState state() const { return {}; }
+    [[nodiscard]] AttachmentState state_at(const PointMotion&) const { return {}; }
+    void restore(const AttachmentState& s) const { AirDragStrip::no_state(s); }
+    void restore_at(const AttachmentState& s, const PointMotion&) const {
+        AirDragStrip::no_state(s);
+    }
+    void set_frequency(double) {}
+
+    /// Its describing function along d at the peak acceleration |a1| [m/s^2] and frequency
+    /// [Hz]: for u = U sin(w t), U = |a1| / w^2, u^3 = (3/4) U^2 u - (1/4) U^3 sin 3wt, so the
+    /// fundamental is a stiffness (3/4) k3 U^2 and M = -(3/4) k3 U^2 / w^2 (real: it moves
+    /// the frequency, no damping); |Q3| / |Q1| = 1/3.
+    [[nodiscard]] DescribingFunction::Value describing(double acceleration_m_s2,
+                                                       double frequency_hz) const;
+
+  private:
+    Eigen::Vector3d direction_;
+    double stiffness_n_per_m3_;
+    Eigen::Vector3d rest_position_m_;
+};
+
 using AttachmentModel = std::variant<DemDamper, RigidParticles, DescribingFunctionDamper,
-                                     AirDragStrip, MicroslipDashpot>;
+                                     AirDragStrip, MicroslipDashpot, CubicSpring>;
 
 /// A model at a named point.
 struct Attachment {

@@ -365,6 +365,24 @@ std::shared_ptr<const config::Table> microslip_table() {
     return t.build();
 }
 
+std::shared_ptr<const config::Table> cubic_spring_table() {
+    TableBuilder<CubicSpringSpec> t(
+        "a hardening cubic spring",
+        "A cubic spring from a named point to the fixed frame, along the excitation direction: "
+        "f = -k3 u^3, u the point's displacement from rest. It stands in for the geometric "
+        "stiffening of the driven mode: the frequency rises with the square of the amplitude.");
+    t.string(
+        "point", [](CubicSpringSpec & c) -> auto& { return c.point; },
+        "named point of the spring (required when stiffness_n_per_m3 > 0)");
+    t.number(
+         "stiffness_n_per_m3", [](CubicSpringSpec & c) -> auto& { return c.stiffness_n_per_m3; },
+         "cubic stiffness k3; 0 turns the spring off")
+        .unit("N/m^3")
+        .bound(Bound::non_negative())
+        .calibrated_within(0.0, 1e5);
+    return t.build();
+}
+
 std::shared_ptr<const config::Table> physics_table() {
     TableBuilder<PhysicsSpec> t(
         "physics a model may leave out",
@@ -374,6 +392,9 @@ std::shared_ptr<const config::Table> physics_table() {
         "air_drag", [](PhysicsSpec & p) -> auto& { return p.air_drag; }, air_drag_table());
     t.table(
         "microslip", [](PhysicsSpec & p) -> auto& { return p.microslip; }, microslip_table());
+    t.table(
+        "cubic_spring", [](PhysicsSpec & p) -> auto& { return p.cubic_spring; },
+        cubic_spring_table());
     return t.build();
 }
 
@@ -480,13 +501,16 @@ std::shared_ptr<const config::Table> build_campaign_schema() {
                            "needs a beam structure (structure.kind = \"beam\")",
                            "the drag acts on the beam's wide face"});
         }
-        if (c.physics.microslip.on()) {
-            const auto names = point_names(c.structure);
-            if (std::find(names.begin(), names.end(), c.physics.microslip.point) == names.end()) {
-                out.push_back({"physics.microslip.point", config::quoted(c.physics.microslip.point),
-                               "must name a point of the structure", "the joint's point"});
+        const auto names = point_names(c.structure);
+        const auto check_point = [&](bool on, const std::string& point, const std::string& key) {
+            if (on && std::find(names.begin(), names.end(), point) == names.end()) {
+                out.push_back({key, config::quoted(point), "must name a point of the structure",
+                               "where the physics acts"});
             }
-        }
+        };
+        check_point(c.physics.microslip.on(), c.physics.microslip.point, "physics.microslip.point");
+        check_point(c.physics.cubic_spring.on(), c.physics.cubic_spring.point,
+                    "physics.cubic_spring.point");
         return out;
     });
     return root.build();

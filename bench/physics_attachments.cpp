@@ -27,7 +27,8 @@ std::vector<Attachment> air_drag_attachments(const CampaignConfig& config) {
     return out;
 }
 
-std::vector<Attachment> physics_attachments(const CampaignConfig& config) {
+std::vector<Attachment> physics_attachments(const CampaignConfig& config,
+                                            const PreparedArrangement& prepared) {
     std::vector<Attachment> out = air_drag_attachments(config);
     const MicroslipSpec& slip = config.physics.microslip;
     if (slip.on()) {
@@ -35,6 +36,12 @@ std::vector<Attachment> physics_attachments(const CampaignConfig& config) {
             {"microslip", slip.point,
              MicroslipDashpot(config.structure.excitation.direction, slip.damping_n_s_per_m,
                               slip.exponent, slip.reference_velocity_m_s)});
+    }
+    const CubicSpringSpec& cubic = config.physics.cubic_spring;
+    if (cubic.on()) {
+        out.push_back({"cubic spring", cubic.point,
+                       CubicSpring(config.structure.excitation.direction, cubic.stiffness_n_per_m3,
+                                   prepared.model.point(cubic.point).position_m)});
     }
     return out;
 }
@@ -46,6 +53,9 @@ DescribingFunction::Value physics_describing(const Attachment& attachment, doubl
     }
     if (const auto* slip = std::get_if<MicroslipDashpot>(&attachment.model)) {
         return slip->describing(acceleration_m_s2, frequency_hz);
+    }
+    if (const auto* cubic = std::get_if<CubicSpring>(&attachment.model)) {
+        return cubic->describing(acceleration_m_s2, frequency_hz);
     }
     throw std::invalid_argument("attachment " + attachment.name +
                                 " is not a catalogue physics with a describing function");

@@ -9,6 +9,7 @@
 
 #include "bench/attachment.hpp"
 #include "bench/campaign_config.hpp"
+#include "bench/campaign_plan.hpp"
 #include "structure/spec.hpp"
 
 namespace sb::bench {
@@ -21,11 +22,14 @@ std::vector<structure::NamedPoint> air_drag_points(const structure::BeamSpec& be
 /// the beam's width b and the strip's length l, along the wide face's normal z.
 std::vector<Attachment> air_drag_attachments(const CampaignConfig& config);
 
-/// Every catalogue physics of `config` that is on, as attachments: the air-drag strips, then
-/// the microslip dashpot (along the excitation direction at its point).
-std::vector<Attachment> physics_attachments(const CampaignConfig& config);
+/// Every catalogue physics of `config` that is on, as attachments in `prepared` (its points'
+/// rest positions): the air-drag strips, then the microslip dashpot and the cubic spring
+/// (along the excitation direction at their points).
+std::vector<Attachment> physics_attachments(const CampaignConfig& config,
+                                            const PreparedArrangement& prepared);
 
-/// The describing function of a catalogue attachment (an AirDragStrip or MicroslipDashpot) at
+/// The describing function of a catalogue attachment (an AirDragStrip, MicroslipDashpot or
+/// CubicSpring) at
 /// the peak acceleration [m/s^2] and frequency [Hz]; throws std::invalid_argument for another
 /// model.
 DescribingFunction::Value physics_describing(const Attachment& attachment, double acceleration_m_s2,

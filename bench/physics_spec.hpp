@@ -34,9 +34,21 @@ struct MicroslipSpec {
     [[nodiscard]] bool on() const { return damping_n_s_per_m > 0.0; }
 };
 
+/// A hardening cubic spring at a point, along the excitation direction: f = -k3 u^3 with u the
+/// point's displacement from rest. It stands in for the geometric stiffening of the driven
+/// mode (the mode's frequency rises with the square of the amplitude, a clean third
+/// harmonic; research note on mismatch diagnosis, section 2).
+struct CubicSpringSpec {
+    std::string point;                ///< named point
+    double stiffness_n_per_m3 = 0.0;  ///< k3; 0: off [N/m^3]
+
+    [[nodiscard]] bool on() const { return stiffness_n_per_m3 > 0.0; }
+};
+
 struct PhysicsSpec {
     AirDragSpec air_drag;
     MicroslipSpec microslip;
+    CubicSpringSpec cubic_spring;
 };
 
 }  // namespace sb::bench

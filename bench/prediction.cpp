@@ -350,7 +350,7 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
                                      d.characterization_file.string() + " (characterised config " +
                                      table.config_hash + ")");
         }
-        for (auto& a : physics_attachments(config)) {
+        for (auto& a : physics_attachments(config, prepared)) {
             auto shared = std::make_shared<const Attachment>(std::move(a));
             dampers.push_back({shared->point, [shared](double acceleration, double f) {
                                    return physics_describing(*shared, acceleration, f);

@@ -292,7 +292,7 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
 
     // The catalogue physics at points of their own (after the dampers, whose indices the
     // checkpoints and the energy ledger use).
-    for (auto& strip : physics_attachments(config)) {
+    for (auto& strip : physics_attachments(config, prepared)) {
         damper_names.push_back(strip.name);
         attachments.push_back(std::move(strip));
     }

@@ -64,6 +64,18 @@ std::vector<CatalogueEntry> build_catalogue() {
          },
          [](const bench::CampaignConfig& c) { return !c.physics.microslip.on(); }});
     rows.push_back(
+        {"geometric-stiffening",
+         "the geometric stiffening of the driven mode",
+         "Large deflections stiffen the mode (mid-plane stretching, curvature): its frequency "
+         "rises with the square of the amplitude, with a clean third harmonic, the damping "
+         "unchanged; as a cubic spring at the control point (physics.cubic_spring).",
+         {{LevelFeature::natural_frequency, ScalingShape::quadratic, +1}},
+         [](bench::CampaignConfig& c) {
+             c.physics.cubic_spring.point = c.campaign.control_point;
+             return std::vector<std::string>{"physics.cubic_spring.stiffness_n_per_m3"};
+         },
+         [](const bench::CampaignConfig& c) { return !c.physics.cubic_spring.on(); }});
+    rows.push_back(
         {"sensor-mass",
          "the mass of the sensor at the control point",
          "An accelerometer and its cable on the beam at the control point that the model "

@@ -185,5 +185,62 @@ TEST(Microslip, ThePredictionBalancesTheDashpotAsTheRunStepsIt) {
     EXPECT_NEAR(added[1] / added[0], std::sqrt(3.0), 0.03 * std::sqrt(3.0));
 }
 
+TEST(CubicSpring, ItsDescribingFunctionIsTheFundamentalOfItsForce) {
+    const Eigen::Vector3d rest(0.5, 0.0, 0.01);
+    const CubicSpring spring(Eigen::Vector3d::UnitZ(), 4000.0, rest);
+    const double f = 6.4, w = 2.0 * std::numbers::pi * f, u0 = 0.02;
+    const int n = 4096;
+    double b1 = 0.0, b3 = 0.0;
+    for (int i = 0; i < n; ++i) {
+        const double theta = 2.0 * std::numbers::pi * (i + 0.5) / n;
+        PointMotion motion;
+        motion.position_m = rest + Eigen::Vector3d(0.003, 0.0, u0 * std::sin(theta));
+        const PointLoad load = spring.step(motion, 1e-4);
+        b1 += 2.0 / n * load.force_n.z() * std::sin(theta);
+        b3 += 2.0 / n * load.force_n.z() * std::sin(3.0 * theta);
+    }
+    // u1 = -i u0, a1 = -w^2 u1, F1 = -i b1: M = -F1 / a1 = b1 / (w^2 u0), real.
+    const auto value = spring.describing(w * w * u0, f);
+    EXPECT_NEAR(value.apparent_mass_kg.real(), b1 / (w * w * u0),
+                1e-6 * std::abs(b1 / (w * w * u0)));
+    EXPECT_EQ(value.apparent_mass_kg.imag(), 0.0);
+    EXPECT_NEAR(value.h3_ratio, std::abs(b3 / b1), 1e-4);
+}
+
+TEST(CubicSpring, ThePredictionBalancesItAsTheRunStepsItAndTheModeHardens) {
+    // A 0.5 %-damped mode on a grid fine enough for the prediction, which does not refine it.
+    const auto fine = [](CampaignConfig c) {
+        c.campaign.frequencies.count = 25;
+        c.campaign.frequencies.grid_damping_ratio = 0.005;
+        return c;
+    };
+    auto config = fine(linear_bench(0.0));
+    config.physics.cubic_spring.point = "damper";
+    config.physics.cubic_spring.stiffness_n_per_m3 = 5000.0;
+    CampaignContext context;
+    context.threads = 2;
+    const CampaignResult bare = run_campaign(fine(linear_bench(0.0)), context);
+    const CampaignResult run = run_campaign(config, context);
+    const CampaignResult predicted = predict_campaign(config, {});
+    const auto frequency = [](const CampaignResult& r, double level) {
+        for (const auto& d : r.recording.damping) {
+            if (d.method == "circle-fit" && std::abs(d.level_g - level) < 1e-9) {
+                return d.natural_frequency_hz;
+            }
+        }
+        ADD_FAILURE() << "no circle fit at " << level << " g";
+        return 0.0;
+    };
+    double shift[2];
+    for (int k = 0; k < 2; ++k) {
+        const double level = k == 0 ? 1.0 : 3.0;
+        EXPECT_NEAR(frequency(predicted, level) / frequency(run, level), 1.0, 2e-4) << level;
+        shift[k] = frequency(run, level) / frequency(bare, level) - 1.0;
+        EXPECT_GT(shift[k], 0.0) << level << " g";
+    }
+    // The equivalent stiffness (3/4) k3 U^2 grows with the square of the amplitude.
+    EXPECT_NEAR(shift[1] / shift[0], 9.0, 0.5);
+}
+
 }  // namespace
 }  // namespace sb::bench
