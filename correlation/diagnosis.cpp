@@ -223,7 +223,7 @@ void write_diagnosis(const std::filesystem::path& out_dir, const DiagnosisResult
         t << "\n[hypotheses]\n"
           << "finding = " << toml_string(h.sentence) << '\n'
           << "winner = "
-          << toml_string(h.winner >= 0 ? h.fits[static_cast<std::size_t>(h.winner)].rank.entry->name
+          << toml_string(h.winner >= 0 ? h.fits[static_cast<std::size_t>(h.winner)].name()
                                        : std::string())
           << '\n'
           << "held_out = [";
@@ -232,37 +232,38 @@ void write_diagnosis(const std::filesystem::path& out_dir, const DiagnosisResult
               << toml_string(h.held_out[k].first + " " + num(h.held_out[k].second, 10) + " g");
         }
         t << "]\n";
+        t << "pairs_tried = " << (h.pairs_tried ? "true" : "false") << '\n';
         for (const auto& c : h.ranking) {
             t << "\n[[candidates]]\n"
               << "name = " << toml_string(c.entry->name) << '\n'
               << "left_out = " << toml_string(c.entry->left_out) << '\n'
               << "score = " << num(c.score) << '\n'
               << "reason = " << toml_string(c.reason) << '\n';
-            const auto fit = std::find_if(h.fits.begin(), h.fits.end(), [&](const CandidateFit& f) {
-                return f.rank.entry == c.entry;
-            });
-            t << "fitted = " << (fit != h.fits.end() && fit->error.empty() ? "true" : "false")
-              << '\n';
-            if (fit == h.fits.end()) continue;
-            if (!fit->error.empty()) {
-                t << "error = " << toml_string(fit->error) << '\n';
+        }
+        for (const auto& fit : h.fits) {
+            t << "\n[[fits]]\n"
+              << "name = " << toml_string(fit.name()) << '\n'
+              << "left_out = " << toml_string(fit.left_out()) << '\n'
+              << "score = " << num(fit.rank.score) << '\n';
+            if (!fit.error.empty()) {
+                t << "error = " << toml_string(fit.error) << '\n';
                 continue;
             }
-            t << "bic = " << num(fit->bic) << '\n'
-              << "baseline_bic = " << num(fit->baseline_bic) << '\n'
-              << "misfit_fitted_levels = " << num(fit->fit) << '\n'
-              << "baseline_misfit_fitted_levels = " << num(fit->baseline_fit) << '\n'
-              << "misfit_held_out = " << num(fit->held_out) << '\n'
-              << "baseline_misfit_held_out = " << num(fit->baseline_held_out) << '\n'
-              << "simulations = " << fit->simulations << '\n';
-            for (std::size_t j = 0; j < fit->free.size(); ++j) {
-                t << "\n[[candidates.parameters]]\n"
-                  << "key = " << toml_string(fit->free[j].path) << '\n'
-                  << "value = " << num(fit->values[j], 10) << '\n';
-                if (j < fit->findings.size()) {
-                    t << "lo95 = " << num(fit->findings[j].lo95, 10) << '\n'
-                      << "hi95 = " << num(fit->findings[j].hi95, 10) << '\n'
-                      << "identifiable = " << (fit->findings[j].identifiable ? "true" : "false")
+            t << "bic = " << num(fit.bic) << '\n'
+              << "baseline_bic = " << num(fit.baseline_bic) << '\n'
+              << "misfit_fitted_levels = " << num(fit.fit) << '\n'
+              << "baseline_misfit_fitted_levels = " << num(fit.baseline_fit) << '\n'
+              << "misfit_held_out = " << num(fit.held_out) << '\n'
+              << "baseline_misfit_held_out = " << num(fit.baseline_held_out) << '\n'
+              << "simulations = " << fit.simulations << '\n';
+            for (std::size_t k = 0; k < fit.free.size(); ++k) {
+                t << "\n[[fits.parameters]]\n"
+                  << "key = " << toml_string(fit.free[k].path) << '\n'
+                  << "value = " << num(fit.values[k], 10) << '\n';
+                if (k < fit.findings.size()) {
+                    t << "lo95 = " << num(fit.findings[k].lo95, 10) << '\n'
+                      << "hi95 = " << num(fit.findings[k].hi95, 10) << '\n'
+                      << "identifiable = " << (fit.findings[k].identifiable ? "true" : "false")
                       << '\n';
                 }
             }
@@ -281,27 +282,25 @@ void write_diagnosis(const std::filesystem::path& out_dir, const DiagnosisResult
         const auto& h = *r.hypotheses;
         md << "\n## The physics left out\n\n"
            << h.sentence << ".\n\n"
-           << "| candidate | signature match | BIC (baseline → fitted) | misfit, fitted levels | "
-              "misfit, held out | fitted values |\n|---|---|---|---|---|---|\n";
+           << "| candidate | signature match |\n|---|---|\n";
         for (const auto& c : h.ranking) {
-            md << "| " << c.entry->name << " | " << num(c.score) << ": " << c.reason << " | ";
-            const auto fit = std::find_if(h.fits.begin(), h.fits.end(), [&](const CandidateFit& f) {
-                return f.rank.entry == c.entry;
-            });
-            if (fit == h.fits.end()) {
-                md << "not fitted | | | |\n";
-            } else if (!fit->error.empty()) {
-                md << fit->error << " | | | |\n";
-            } else {
-                md << num(fit->baseline_bic) << " → " << num(fit->bic) << " | "
-                   << num(fit->baseline_fit) << " → " << num(fit->fit) << " | "
-                   << num(fit->baseline_held_out) << " → " << num(fit->held_out) << " | ";
-                for (std::size_t j = 0; j < fit->free.size(); ++j) {
-                    md << (j ? ", " : "") << "`" << fit->free[j].path
-                       << "` = " << num(fit->values[j]);
-                }
-                md << " |\n";
+            md << "| " << c.entry->name << " | " << num(c.score) << ": " << c.reason << " |\n";
+        }
+        md << "\n| fitted | BIC (baseline → fitted) | misfit, fitted levels | misfit, held out | "
+              "fitted values |\n|---|---|---|---|---|\n";
+        for (const auto& fit : h.fits) {
+            md << "| " << fit.name() << " | ";
+            if (!fit.error.empty()) {
+                md << fit.error << " | | | |\n";
+                continue;
             }
+            md << num(fit.baseline_bic) << " → " << num(fit.bic) << " | " << num(fit.baseline_fit)
+               << " → " << num(fit.fit) << " | " << num(fit.baseline_held_out) << " → "
+               << num(fit.held_out) << " | ";
+            for (std::size_t k = 0; k < fit.free.size(); ++k) {
+                md << (k ? ", " : "") << "`" << fit.free[k].path << "` = " << num(fit.values[k]);
+            }
+            md << " |\n";
         }
         md << "\nHeld out (not fitted, predicted): ";
         for (std::size_t k = 0; k < h.held_out.size(); ++k) {
@@ -318,9 +317,8 @@ void write_diagnosis(const std::filesystem::path& out_dir, const DiagnosisResult
     if (r.hypotheses && r.hypotheses->winner >= 0) {
         const auto& w = r.hypotheses->fits[static_cast<std::size_t>(r.hypotheses->winner)];
         write_file_atomically(out_dir / "improved.toml",
-                              "# The config with " + w.rank.entry->left_out +
-                                  " at its fitted values (" + command_line + ")\n" +
-                                  bench::resolved_config_toml(w.improved));
+                              "# The config with " + w.left_out() + " at its fitted values (" +
+                                  command_line + ")\n" + bench::resolved_config_toml(w.improved));
     }
 }
 

@@ -74,6 +74,18 @@ Evaluation evaluate_on(const bench::CampaignConfig& config, const std::vector<Fr
 
 }  // namespace
 
+std::string CandidateFit::name() const {
+    std::string out;
+    for (const auto* e : entries) out += (out.empty() ? "" : " + ") + e->name;
+    return out;
+}
+
+std::string CandidateFit::left_out() const {
+    std::string out;
+    for (const auto* e : entries) out += (out.empty() ? "" : " and ") + e->left_out;
+    return out;
+}
+
 Simulation candidate_simulation(const bench::CampaignConfig& config) {
     const bool predictable =
         config.structure.excitation.kind == structure::ExcitationSpec::Kind::force &&
@@ -123,20 +135,25 @@ HypothesisTest test_hypotheses(const bench::CampaignConfig& config, const Measur
     const auto [baseline_fit, baseline_held_out] =
         split_misfit(baseline, measurement, test.held_out);
 
-    int tried = 0;
-    for (const auto& candidate : test.ranking) {
-        if (tried >= options.candidates || candidate.score <= 0.0) break;
-        ++tried;
+    const auto fit_rows = [&](const std::vector<const CandidateScore*>& rows) {
         CandidateFit fit;
-        fit.rank = candidate;
+        fit.rank = *rows.front();
+        for (const auto* r : rows) fit.entries.push_back(r->entry);
+        for (std::size_t k = 1; k < rows.size(); ++k) fit.rank.score += rows[k]->score;
         fit.baseline_fit = baseline_fit;
         fit.baseline_held_out = baseline_held_out;
         fit.baseline_bic = 2.0 * baseline_fit;
         try {
             bench::CampaignConfig on = config;
-            const auto keys = candidate.entry->switch_on(on);
-            fit.free = parse_free_parameters(on, keys, "catalogue " + candidate.entry->name);
-            const CalibrationResult r = calibrate(on, fitting, fit.free, calibration);
+            for (const auto* r : rows) {
+                const auto keys = r->entry->switch_on(on);
+                for (const auto& p : parse_free_parameters(on, keys, "catalogue " + r->entry->name))
+                    fit.free.push_back(p);
+            }
+            // The budget is per freed value: a row with two keys, or a pair, gets twice as many.
+            CalibrationOptions scaled = calibration;
+            scaled.search.budget = calibration.search.budget * static_cast<int>(fit.free.size());
+            const CalibrationResult r = calibrate(on, fitting, fit.free, scaled);
             fit.values = r.best.values;
             fit.findings = r.findings;
             fit.simulations = r.simulations;
@@ -150,11 +167,29 @@ HypothesisTest test_hypotheses(const bench::CampaignConfig& config, const Measur
         }
         if (options.calibration.progress) {
             options.calibration.progress(
-                candidate.entry->name + ": " +
+                fit.name() + ": " +
                 (fit.error.empty() ? "BIC " + number(fit.baseline_bic) + " -> " + number(fit.bic)
                                    : "not fitted: " + fit.error));
         }
         test.fits.push_back(std::move(fit));
+    };
+    std::vector<const CandidateScore*> fitted;
+    for (const auto& candidate : test.ranking) {
+        if (static_cast<int>(fitted.size()) >= options.candidates || candidate.score <= 0.0) break;
+        fitted.push_back(&candidate);
+        fit_rows({&candidate});
+    }
+    // Pairs, when the best single row leaves the fitted levels beyond the noise (½ χ² above
+    // the number of features: a reduced χ² above 2): two physics may conceal each other.
+    double best_single = INFINITY;
+    for (const auto& f : test.fits) {
+        if (f.error.empty()) best_single = std::min(best_single, f.fit);
+    }
+    if (fitted.size() >= 2 && best_single > static_cast<double>(fitting.features.size())) {
+        test.pairs_tried = true;
+        for (std::size_t a = 0; a < fitted.size(); ++a) {
+            for (std::size_t b = a + 1; b < fitted.size(); ++b) fit_rows({fitted[a], fitted[b]});
+        }
     }
     std::stable_sort(test.fits.begin(), test.fits.end(),
                      [](const CandidateFit& a, const CandidateFit& b) { return a.bic < b.bic; });
@@ -166,8 +201,7 @@ HypothesisTest test_hypotheses(const bench::CampaignConfig& config, const Measur
     }
     if (test.winner == 0) {
         const auto& w = test.fits.front();
-        std::string s =
-            "the model left out " + w.rank.entry->left_out + " (" + w.rank.entry->name + "): ";
+        std::string s = "the model left out " + w.left_out() + " (" + w.name() + "): ";
         for (std::size_t j = 0; j < w.free.size(); ++j) {
             s += (j ? ", " : "") + w.free[j].path + " = " + number(w.values[j]);
             if (j < w.findings.size()) {
@@ -186,7 +220,7 @@ HypothesisTest test_hypotheses(const bench::CampaignConfig& config, const Measur
     } else {
         test.sentence =
             "no physics of the catalogue explains the mismatch: the best, " +
-            test.fits.front().rank.entry->name +
+            test.fits.front().name() +
             (test.fits.front().error.empty()
                  ? ", lowers the BIC from " + number(test.fits.front().baseline_bic) + " to " +
                        number(test.fits.front().bic) + " and the held-out misfit from " +

@@ -22,9 +22,15 @@ struct HypothesisOptions {
     CalibrationOptions calibration;
 };
 
-/// One candidate switched on and fitted.
+/// One candidate, or a pair of them, switched on and fitted.
 struct CandidateFit {
-    CandidateScore rank;
+    CandidateScore rank;  ///< a pair's: its first row, the scores summed
+    /// The catalogue rows switched on: one, or two when no single one explained the mismatch.
+    std::vector<const CatalogueEntry*> entries;
+    /// "air-drag", "air-drag + background-damping".
+    [[nodiscard]] std::string name() const;
+    /// "the beam's aerodynamic drag", "... and the rig's background damping".
+    [[nodiscard]] std::string left_out() const;
     std::vector<FreeParameter> free;
     std::vector<double> values;              ///< fitted on the fitting levels
     std::vector<ParameterFinding> findings;  ///< their 95 % intervals (when found)
@@ -43,6 +49,9 @@ struct CandidateFit {
 
 struct HypothesisTest {
     std::vector<CandidateScore> ranking;  ///< every row that applies, best first
+    /// Whether pairs of the fitted rows were tried: the best single one left the fitted
+    /// levels' χ² above twice their number of features.
+    bool pairs_tried = false;
     /// Per arrangement, its options.held_out_levels highest levels when it has two more.
     std::vector<std::pair<std::string, double>> held_out;
     std::vector<CandidateFit> fits;  ///< the fitted candidates, lowest BIC first
@@ -63,7 +72,8 @@ Simulation candidate_simulation(const bench::CampaignConfig& config);
 
 /// Ranks the catalogue against `mismatches`, fits the best options.candidates with a positive
 /// score (each switched on in a copy of `config`, its keys freed within their intervals) on
-/// the measurement without its held-out levels, and compares them. Throws what calibrate
+/// the measurement without its held-out levels, then every pair of those fitted when the best
+/// single one does not reach the noise, and compares them all. Throws what calibrate
 /// throws for the baseline's evaluation; a candidate that cannot be fitted keeps its error.
 HypothesisTest test_hypotheses(const bench::CampaignConfig& config, const Measurement& measurement,
                                const std::vector<FeatureMismatch>& mismatches,

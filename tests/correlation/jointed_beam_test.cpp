@@ -168,7 +168,7 @@ TEST(JointedBeam, AmplitudeDependentDampingIsLocatedNamedAndPredictsTheHeldOutLe
     ASSERT_TRUE(d.hypotheses.has_value()) << d.verdict;
     std::cout << d.hypotheses->sentence << "\n";
     for (const auto& f : d.hypotheses->fits) {
-        std::cout << f.rank.entry->name << " (score " << f.rank.score << "): ";
+        std::cout << f.name() << " (score " << f.rank.score << "): ";
         if (!f.error.empty()) {
             std::cout << f.error << "\n";
             continue;
@@ -190,7 +190,7 @@ TEST(JointedBeam, AmplitudeDependentDampingIsLocatedNamedAndPredictsTheHeldOutLe
     const auto& h = *d.hypotheses;
     ASSERT_EQ(h.held_out.size(), 2U);
     ASSERT_EQ(h.winner, 0) << h.sentence;
-    EXPECT_EQ(h.fits.front().rank.entry->name, "joint-microslip") << h.sentence;
+    EXPECT_EQ(h.fits.front().name(), "joint-microslip") << h.sentence;
     EXPECT_LT(h.fits.front().held_out, h.fits.front().baseline_held_out) << h.sentence;
 }
 
