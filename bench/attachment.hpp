@@ -156,29 +156,31 @@ class DescribingFunctionDamper {
     std::complex<double> sum_phasor_ = 0.0;
 };
 
+/// The verbs of an attachment that keeps no state between steps (the catalogue physics below):
+/// no weight, an empty state, and a state that holds something refused, never ignored.
+struct StatelessAttachment {
+    [[nodiscard]] PointLoad weight() const { return {}; }
+    [[nodiscard]] AttachmentState state() const { return {}; }
+    [[nodiscard]] AttachmentState state_at(const PointMotion&) const { return {}; }
+    void restore(const AttachmentState& s) const {
+        if (s.dem || s.describing) {
+            throw std::invalid_argument("a stateless attachment was given a state");
+        }
+    }
+    void restore_at(const AttachmentState& s, const PointMotion&) const { restore(s); }
+    void set_frequency(double) {}
+};
+
 /// A strip of the beam under quadratic air drag, lumped at its midpoint (physics.air_drag;
 /// bench/physics_attachments.hpp): F = -k |v_n| v_n n along the wide face's normal n, with
 /// k = 1/2 rho C_D b l for a strip of width b and length l. Stateless; its load is that of the
 /// motion at the step's start, applied over the step (the drag changes little in a step of
 /// a few hundredths of a period at most).
-class AirDragStrip {
+class AirDragStrip : public StatelessAttachment {
   public:
     AirDragStrip(const Eigen::Vector3d& normal, double coefficient_kg_m);
 
     PointLoad step(const PointMotion& motion, double dt_s) const;
-    [[nodiscard]] PointLoad weight() const { return {}; }
-    [[nodiscard]] AttachmentState state() const { return {}; }
-    [[nodiscard]] AttachmentState state_at(const PointMotion&) const { return {}; }
-    void restore(const AttachmentState& s) const { no_state(s); }
-    void restore_at(const AttachmentState& s, const PointMotion&) const { no_state(s); }
-    void set_frequency(double) {}
-
-    /// A stateless attachment's state holds nothing: never ignored when it does.
-    static void no_state(const AttachmentState& s) {
-        if (s.dem || s.describing) {
-            throw std::invalid_argument("a stateless attachment was given a state");
-        }
-    }
 
     /// Its describing function along n at the peak acceleration |a1| [m/s^2] and frequency
     /// [Hz]: for v = V sin(w t) the fundamental of -k |v| v is -(8 / 3 pi) k V v, so
@@ -197,20 +199,12 @@ class AirDragStrip {
 /// Microslip in a joint as a power-law dashpot at its point (physics.microslip;
 /// bench/physics_attachments.hpp): F = -c (|v_d| / v_ref)^chi v_d d along the excitation
 /// direction d. Stateless, explicit as the air-drag strip.
-class MicroslipDashpot {
+class MicroslipDashpot : public StatelessAttachment {
   public:
     MicroslipDashpot(const Eigen::Vector3d& direction, double damping_n_s_per_m, double exponent,
                      double reference_velocity_m_s);
 
     PointLoad step(const PointMotion& motion, double dt_s) const;
-    [[nodiscard]] PointLoad weight() const { return {}; }
-    [[nodiscard]] AttachmentState state() const { return {}; }
-    [[nodiscard]] AttachmentState state_at(const PointMotion&) const { return {}; }
-    void restore(const AttachmentState& s) const { AirDragStrip::no_state(s); }
-    void restore_at(const AttachmentState& s, const PointMotion&) const {
-        AirDragStrip::no_state(s);
-    }
-    void set_frequency(double) {}
 
     /// Its describing function along d at the peak acceleration |a1| [m/s^2] and frequency
     /// [Hz]: for v = V sin(w t), V = |a1| / w, the fundamental of |v|^chi v is
@@ -230,20 +224,12 @@ class MicroslipDashpot {
 /// A hardening cubic spring from its point to the fixed frame (physics.cubic_spring;
 /// bench/physics_attachments.hpp): F = -k3 u^3 d with u = d . (x - x_rest). Stateless,
 /// explicit as the air-drag strip.
-class CubicSpring {
+class CubicSpring : public StatelessAttachment {
   public:
     CubicSpring(const Eigen::Vector3d& direction, double stiffness_n_per_m3,
                 const Eigen::Vector3d& rest_position_m);
 
     PointLoad step(const PointMotion& motion, double dt_s) const;
-    [[nodiscard]] PointLoad weight() const { return {}; }
-    [[nodiscard]] AttachmentState state() const { return {}; }
-    [[nodiscard]] AttachmentState state_at(const PointMotion&) const { return {}; }
-    void restore(const AttachmentState& s) const { AirDragStrip::no_state(s); }
-    void restore_at(const AttachmentState& s, const PointMotion&) const {
-        AirDragStrip::no_state(s);
-    }
-    void set_frequency(double) {}
 
     /// Its describing function along d at the peak acceleration |a1| [m/s^2] and frequency
     /// [Hz]: for u = U sin(w t), U = |a1| / w^2, u^3 = (3/4) U^2 u - (1/4) U^3 sin 3wt, so the

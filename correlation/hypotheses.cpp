@@ -2,19 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <set>
 
 #include "bench/prediction.hpp"
+#include "correlation/report_text.hpp"
 
 namespace sb::correlation {
 namespace {
 
-std::string number(double v, int digits = 3) {
-    char buffer[40];
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
-    return buffer;
-}
+/// Three significant digits, as the findings of drift and mismatch are worded.
+std::string number(double v) { return num(v, 3); }
 
 bool is_held_out(const std::vector<std::pair<std::string, double>>& held_out,
                  const std::string& arrangement, double level_g) {
