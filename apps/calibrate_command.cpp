@@ -183,7 +183,8 @@ void register_calibrate_command(CLI::App& app, int& exit_code) {
                     "measured recording directory (damping.csv, points.csv, time histories)")
         ->required();
     cmd->add_option("--free", args->free,
-                    "a value to fit, KEY=MIN:MAX or KEY (its declared interval); repeatable");
+                    "a value to fit, KEY=MIN:MAX, KEY=MIN:MAX:log (searched on a log scale) or "
+                    "KEY (its declared interval); repeatable");
     cmd->add_option("--budget", args->budget, "evaluations at most (default 30)")
         ->check(CLI::Range(1, 100000));
     cmd->add_option("--mode", args->mode,

@@ -168,8 +168,9 @@ void register_diagnose_command(CLI::App& app, int& exit_code) {
                     "measured recording directory (damping.csv, points.csv, time histories)")
         ->required();
     cmd->add_option("--drift", args->drift,
-                    "a value to calibrate level by level and test for a trend, KEY=MIN:MAX or "
-                    "KEY (its declared interval); repeatable");
+                    "a value to calibrate level by level and test for a trend, KEY=MIN:MAX, "
+                    "KEY=MIN:MAX:log (searched on a log scale) or KEY (its declared interval); "
+                    "repeatable");
     cmd->add_option("--budget", args->budget,
                     "evaluations per level for each --drift calibration (default 15)")
         ->check(CLI::Range(1, 100000));

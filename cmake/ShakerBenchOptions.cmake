@@ -23,9 +23,11 @@ if(SB_FUZZ)
   if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
     message(FATAL_ERROR "SB_FUZZ needs clang (libFuzzer): use the 'fuzz' preset")
   endif()
-  # Every library records the coverage libFuzzer steers by; only the targets in fuzz/ link
-  # libFuzzer's main (-fsanitize=fuzzer there).
-  target_compile_options(sb_sanitizers INTERFACE -fsanitize=fuzzer-no-link)
+  # Every library records the coverage libFuzzer steers by, except the sources of
+  # fuzz/coverage-ignorelist.txt; only the targets in fuzz/ link libFuzzer's main
+  # (-fsanitize=fuzzer there).
+  target_compile_options(sb_sanitizers INTERFACE -fsanitize=fuzzer-no-link
+    -fsanitize-coverage-ignorelist=${PROJECT_SOURCE_DIR}/fuzz/coverage-ignorelist.txt)
 endif()
 
 # sb_add_module(NAME SOURCES ... DEPENDS ...): a library target sb_NAME with alias sb::NAME,

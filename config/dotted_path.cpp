@@ -1,7 +1,11 @@
 // Getting and setting config values by dotted path.
 #include "config/dotted_path.hpp"
 
+#include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
+#include <utility>
 
 #include "config/read.hpp"
 
@@ -16,7 +20,12 @@ struct Target {
     void* object = nullptr;
     bool is_element = false;
     std::size_t index = 0;
-    std::string path;  ///< canonical text of the path
+    /// One number of a vector or array key ("...rotational_stiffness_nm_per_rad[1]"): its
+    /// index and its declaration (the key's unit, bound and calibration interval).
+    std::optional<std::size_t> component;
+    const Declaration* component_decl = nullptr;
+    std::string path;       ///< canonical text of the path
+    std::string value_key;  ///< the path of the key holding the value (without a component)
 };
 
 [[noreturn]] void fail(std::string_view path, std::string constraint, std::string meaning,
@@ -32,6 +41,48 @@ struct Target {
 }
 
 const char* kSeeKeys = "see docs/config.md or `shakerbench keys CONFIG` for the keys";
+
+/// The declaration of number `index` of a vector or array entry: the entry's unit, bound and
+/// calibration interval, its default's number. Made once per entry and index and kept for the
+/// program's life, as the tables' own declarations are (declaration() returns a reference).
+const Declaration& component_declaration(const Entry& entry, std::size_t index) {
+    static std::mutex mutex;
+    static std::map<std::pair<const Entry*, std::size_t>, std::unique_ptr<const Declaration>> made;
+    const std::lock_guard<std::mutex> lock(mutex);
+    auto& slot = made[{&entry, index}];
+    if (!slot) {
+        const Declaration& whole = entry.decl;
+        auto d = std::make_unique<Declaration>(whole);
+        d->key = index_path(whole.key, index);
+        d->type = Type::number;
+        const auto* defaults = std::get_if<std::vector<double>>(&whole.default_value);
+        if (defaults != nullptr && index < defaults->size()) {
+            d->presence = Presence::defaulted;
+            d->default_value = (*defaults)[index];
+        } else {
+            d->presence = Presence::optional;
+            d->default_value = std::monostate{};
+        }
+        d->meaning = whole.meaning + ", number " + std::to_string(index);
+        slot = std::move(d);
+    }
+    return *slot;
+}
+
+/// `t` narrowed to the number at `index` of its vector or array key.
+Target with_component(Target t, std::size_t index, const Origin& origin) {
+    const Value value = effective_value(*t.table, *t.entry, t.object);
+    const auto* numbers = std::get_if<std::vector<double>>(&value);
+    const std::size_t size = numbers == nullptr ? 0 : numbers->size();
+    t.path = index_path(t.path, index);
+    if (index >= size) {
+        fail(t.path, "the value has " + std::to_string(size) + " numbers", t.entry->decl.meaning,
+             origin);
+    }
+    t.component = index;
+    t.component_decl = &component_declaration(*t.entry, index);
+    return t;
+}
 
 Target resolve(const Table& root, void* object, std::string_view path, const Origin& origin) {
     std::vector<PathPart> parts;
@@ -77,6 +128,7 @@ Target resolve(const Table& root, void* object, std::string_view path, const Ori
                     t.entry = e;
                     t.is_element = true;
                     t.index = *found;
+                    t.value_key = t.path;
                     return t;
                 }
                 t.object = e->element(t.object, *found);
@@ -105,9 +157,19 @@ Target resolve(const Table& root, void* object, std::string_view path, const Ori
                 }
                 break;
             }
+            case Type::vector3:
+            case Type::numbers:
+                t.entry = e;
+                t.value_key = t.path;
+                if (last) return t;
+                if (!parts[i + 1].is_index || i + 2 != parts.size()) {
+                    fail(path, "unknown key", kSeeKeys, origin);
+                }
+                return with_component(t, parts[i + 1].index, origin);
             default:
                 if (!last) fail(path, "unknown key", kSeeKeys, origin);
                 t.entry = e;
+                t.value_key = t.path;
                 return t;
         }
     }
@@ -115,20 +177,35 @@ Target resolve(const Table& root, void* object, std::string_view path, const Ori
 }
 
 const Declaration& decl_of(const Target& t) {
+    if (t.component_decl) return *t.component_decl;
     return t.is_element ? t.entry->element_decl : t.entry->decl;
 }
 
+/// The number `index` of a vector or array value.
+Value number_at(const Value& whole, std::size_t index) {
+    return std::get<std::vector<double>>(whole).at(index);
+}
+
 Value current(const Target& t) {
+    if (t.component) return number_at(effective_value(*t.table, *t.entry, t.object), *t.component);
     return t.is_element ? t.entry->element_get(t.object, t.index)
                         : effective_value(*t.table, *t.entry, t.object);
 }
 
 Value stored(const Target& t) {
+    if (t.component) return number_at(effective_value(*t.table, *t.entry, t.object), *t.component);
     return t.is_element ? t.entry->element_get(t.object, t.index) : t.entry->get(t.object);
 }
 
 void assign(const Target& t, const Value& v) {
-    if (t.is_element) {
+    if (t.component) {
+        // The whole vector as the bench holds it, with one number changed.
+        auto whole = std::get<std::vector<double>>(effective_value(*t.table, *t.entry, t.object));
+        double number = 0.0;
+        as_number(v, number);
+        whole.at(*t.component) = number;
+        t.entry->set(t.object, whole);
+    } else if (t.is_element) {
         t.entry->element_set(t.object, t.index, v);
     } else {
         t.entry->set(t.object, v);
@@ -140,7 +217,7 @@ void apply(const Table& root, void* object, SourceMap& where, const Target& t, c
            const Origin& origin) {
     const Value before = stored(t);
     assign(t, v);
-    where.overrides.emplace_back(t.path, origin);
+    where.overrides.emplace_back(t.value_key, origin);
     Diagnostics diagnostics;
     check(root, object, where, diagnostics);
     if (!diagnostics.empty()) {
@@ -205,7 +282,7 @@ void set_text_all(const Table& root, void* object, SourceMap& where,
             if (!value_from_text(decl_of(t), a.text, t.path, origin, diagnostics, value)) continue;
             undo.push_back({t, stored(t)});
             assign(t, value);
-            where.overrides.emplace_back(t.path, origin);
+            where.overrides.emplace_back(t.value_key, origin);
         } catch (const ConfigException& e) {
             for (const auto& error : e.errors()) diagnostics.add(error);
         }

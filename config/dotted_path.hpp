@@ -13,7 +13,8 @@
 namespace sb::config {
 
 /// The value at `path` ("dampers.pd.contact.sliding_friction",
-/// "structure.beam.masses[1].mass_kg", "structure.beam.points.damper") as the bench uses it:
+/// "structure.beam.masses[1].mass_kg", "structure.beam.points.damper", one number of a vector
+/// or an array: "structure.excitation.direction[2]") as the bench uses it:
 /// a `follows` key resolved, std::monostate for an automatic or absent value. Throws
 /// ConfigException when the path names no value.
 Value get(const Table& root, const void* object, std::string_view path);

@@ -10,6 +10,7 @@
 #include "core/text_file.hpp"
 #include "correlation/calibration.hpp"
 #include "correlation/report_text.hpp"
+#include "identification/plots.hpp"
 
 namespace sb::correlation {
 namespace {
@@ -71,6 +72,7 @@ std::string calibration_toml(const CalibrationResult& r, const Measurement& m,
             << "key = " << toml_string(p.path) << '\n'
             << "meaning = " << toml_string(p.meaning) << '\n'
             << "search_interval = [" << num(p.lo, 17) << ", " << num(p.hi, 17) << "]\n"
+            << "search_scale = " << toml_string(p.log_scale ? "log" : "linear") << '\n'
             << "start = " << num(p.start, 17) << '\n';
         if (j < r.findings.size()) {
             const auto& f = r.findings[j];
@@ -244,12 +246,12 @@ void write_plots(const fs::path& out_dir, const CalibrationResult& r, const Meas
            << " calibrated'";
     }
     gp << '\n';
-    write_file_atomically(dir / "calibration.gp", gp.str());
-    if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
-        const std::string command =
-            "cd '" + dir.string() + "' && gnuplot calibration.gp >gnuplot.log 2>&1";
-        [[maybe_unused]] const int status = std::system(command.c_str());
-    }
+    identification::PlotResult plots;
+    plots.script = dir / "calibration.gp";
+    plots.svg = {out_dir / "calibration-damping.svg"};
+    write_file_atomically(plots.script, gp.str());
+    // Without gnuplot the data and the script are there to render later.
+    identification::render_gnuplot(true, plots);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 
 #include "bench/resolved_config.hpp"
 #include "core/text_file.hpp"
+#include "correlation/diagnosis_plots.hpp"
 #include "correlation/report_text.hpp"
 #include "identification/recording_io.hpp"
 
@@ -121,6 +122,7 @@ DiagnosisResult diagnose(const bench::CampaignConfig& config, const std::filesys
         baseline = bench::run_campaign(config, context);
     }
     result.simulated = level_feature_values(baseline.recording, options.stated);
+    result.baseline = simulated_features(baseline, result.measurement);
 
     // Locate: the features beyond the noise and their scaling with the level.
     result.mismatches = locate_mismatch(result.measured, result.simulated);
@@ -312,6 +314,10 @@ void write_diagnosis(const std::filesystem::path& out_dir, const DiagnosisResult
         if (h.winner >= 0) md << "\nThe improved config: `improved.toml`.\n";
     }
     create_directories_for_writing(out_dir);
+    const auto plots = write_diagnosis_plots(out_dir, r);
+    md << "\n## Plots\n\n";
+    for (const auto& svg : plots.svg) md << "- `" << svg.filename().string() << "`\n";
+    if (!plots.message.empty()) md << "\n" << plots.message << "\n";
     write_file_atomically(out_dir / "diagnosis.toml", t.str());
     write_file_atomically(out_dir / "report.md", md.str());
     if (r.hypotheses && r.hypotheses->winner >= 0) {

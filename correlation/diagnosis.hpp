@@ -13,6 +13,7 @@
 #include "bench/campaign.hpp"
 #include "correlation/calibration.hpp"
 #include "correlation/drift.hpp"
+#include "correlation/features.hpp"
 #include "correlation/hypotheses.hpp"
 #include "correlation/mismatch.hpp"
 
@@ -45,6 +46,9 @@ struct DiagnosisResult {
     Measurement measurement;
     std::vector<LevelFeatureValues> measured;
     std::vector<LevelFeatureValues> simulated;
+    /// The baseline's simulation reduced to the measurement's features (its FRF at the
+    /// measured frequencies, its damping curve): for the report's plots.
+    SimulatedFeatures baseline;
     std::vector<FeatureMismatch> mismatches;  ///< beyond the noise first
     std::vector<DriftResult> drifts;
     /// The catalogue ranked and its best candidates fitted (when a feature disagreed).

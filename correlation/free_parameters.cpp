@@ -75,19 +75,28 @@ std::vector<FreeParameter> parse_free_parameters(const bench::CampaignConfig& co
             p.lo = (*decl->calibration_range)[0];
             p.hi = (*decl->calibration_range)[1];
         } else {
-            const auto colon = interval.find(':');
-            const auto lo = colon == std::string::npos
-                                ? std::nullopt
-                                : parse_number(std::string_view(interval).substr(0, colon));
-            const auto hi = colon == std::string::npos
-                                ? std::nullopt
-                                : parse_number(std::string_view(interval).substr(colon + 1));
+            // MIN:MAX, or MIN:MAX:log.
+            std::string_view bounds = interval;
+            if (bounds.size() > 4 && bounds.substr(bounds.size() - 4) == ":log") {
+                p.log_scale = true;
+                bounds.remove_suffix(4);
+            }
+            const auto colon = bounds.find(':');
+            const auto lo =
+                colon == std::string::npos ? std::nullopt : parse_number(bounds.substr(0, colon));
+            const auto hi =
+                colon == std::string::npos ? std::nullopt : parse_number(bounds.substr(colon + 1));
             if (!lo || !hi) {
-                fail(key, interval, "must be MIN:MAX, two finite numbers", p.meaning);
+                fail(key, interval, "must be MIN:MAX or MIN:MAX:log, two finite numbers",
+                     p.meaning);
                 continue;
             }
             if (!(*lo < *hi)) {
                 fail(key, interval, "MIN must be less than MAX", p.meaning);
+                continue;
+            }
+            if (p.log_scale && !(*lo > 0.0)) {
+                fail(key, interval, "a log scale needs MIN > 0", p.meaning);
                 continue;
             }
             p.lo = *lo;
@@ -131,21 +140,28 @@ std::vector<FreeParameter> default_free_parameters(const bench::CampaignConfig& 
     return parse_free_parameters(config, items, "default free set");
 }
 
+double FreeParameter::value_at(double u) const {
+    const double t = std::clamp(u, 0.0, 1.0);
+    if (log_scale) return t >= 1.0 ? hi : lo * std::pow(hi / lo, t);
+    return lo + t * (hi - lo);
+}
+
+double FreeParameter::unit_of(double value) const {
+    if (log_scale) return std::log(value / lo) / std::log(hi / lo);
+    return (value - lo) / (hi - lo);
+}
+
 std::vector<double> to_values(const std::vector<FreeParameter>& free,
                               const std::vector<double>& u) {
     std::vector<double> v(free.size());
-    for (std::size_t i = 0; i < free.size(); ++i) {
-        v[i] = free[i].lo + std::clamp(u[i], 0.0, 1.0) * (free[i].hi - free[i].lo);
-    }
+    for (std::size_t i = 0; i < free.size(); ++i) v[i] = free[i].value_at(u[i]);
     return v;
 }
 
 std::vector<double> to_unit(const std::vector<FreeParameter>& free,
                             const std::vector<double>& values) {
     std::vector<double> u(free.size());
-    for (std::size_t i = 0; i < free.size(); ++i) {
-        u[i] = (values[i] - free[i].lo) / (free[i].hi - free[i].lo);
-    }
+    for (std::size_t i = 0; i < free.size(); ++i) u[i] = free[i].unit_of(values[i]);
     return u;
 }
 

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
+#include <tuple>
 
 #include "bench/prediction.hpp"
 #include "correlation/report_text.hpp"
@@ -129,8 +131,10 @@ HypothesisTest test_hypotheses(const bench::CampaignConfig& config, const Measur
     calibration.progress = {};
     if (!calibration.cache_dir.empty()) calibration.cache_dir /= "hypotheses";
     const Evaluation baseline = evaluate_on(config, {}, {}, measurement, calibration);
-    const auto [baseline_fit, baseline_held_out] =
-        split_misfit(baseline, measurement, test.held_out);
+    // Plain variables, not a structured binding: the lambda below captures them.
+    double baseline_fit = 0.0;
+    double baseline_held_out = 0.0;
+    std::tie(baseline_fit, baseline_held_out) = split_misfit(baseline, measurement, test.held_out);
 
     const auto fit_rows = [&](const std::vector<const CandidateScore*>& rows) {
         CandidateFit fit;
@@ -156,11 +160,12 @@ HypothesisTest test_hypotheses(const bench::CampaignConfig& config, const Measur
             fit.simulations = r.simulations;
             const Evaluation at = evaluate_on(on, fit.free, fit.values, measurement, calibration);
             std::tie(fit.fit, fit.held_out) = split_misfit(at, measurement, test.held_out);
+            fit.simulated = at.simulated;
             fit.bic = 2.0 * fit.fit + static_cast<double>(fit.free.size()) * std::log(n);
             fit.improved = with_values(on, fit.free, fit.values);
         } catch (const std::exception& e) {
             fit.error = e.what();
-            fit.bic = INFINITY;
+            fit.bic = std::numeric_limits<double>::infinity();
         }
         if (options.calibration.progress) {
             options.calibration.progress(
@@ -177,15 +182,28 @@ HypothesisTest test_hypotheses(const bench::CampaignConfig& config, const Measur
         fit_rows({&candidate});
     }
     // Pairs, when the best single row leaves the fitted levels beyond the noise (½ χ² above
-    // the number of features: a reduced χ² above 2): two physics may conceal each other.
-    double best_single = INFINITY;
+    // the number of features: a reduced χ² above 2): two physics may conceal each other; or,
+    // those no more complex than it, when the best single row frees two values or more (a
+    // power law of the level mimics an offset plus a line on a few levels).
+    double best_single = std::numeric_limits<double>::infinity();
+    std::size_t best_values = 0;
     for (const auto& f : test.fits) {
-        if (f.error.empty()) best_single = std::min(best_single, f.fit);
+        if (f.error.empty() && f.fit < best_single) {
+            best_single = f.fit;
+            best_values = f.free.size();
+        }
     }
-    if (fitted.size() >= 2 && best_single > static_cast<double>(fitting.features.size())) {
-        test.pairs_tried = true;
+    const bool beyond_noise = best_single > static_cast<double>(fitting.features.size());
+    if (fitted.size() >= 2 && (beyond_noise || best_values >= 2)) {
+        // test.fits holds the single rows in the order of `fitted`; within the noise only the
+        // pairs no more complex than the best single row compete.
+        const auto values_of = [&](std::size_t k) { return test.fits[k].free.size(); };
         for (std::size_t a = 0; a < fitted.size(); ++a) {
-            for (std::size_t b = a + 1; b < fitted.size(); ++b) fit_rows({fitted[a], fitted[b]});
+            for (std::size_t b = a + 1; b < fitted.size(); ++b) {
+                if (!beyond_noise && values_of(a) + values_of(b) > best_values) continue;
+                test.pairs_tried = true;
+                fit_rows({fitted[a], fitted[b]});
+            }
         }
     }
     std::stable_sort(test.fits.begin(), test.fits.end(),

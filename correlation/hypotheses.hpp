@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "correlation/calibration.hpp"
+#include "correlation/features.hpp"
 #include "correlation/physics_catalogue.hpp"
 
 namespace sb::correlation {
@@ -44,13 +45,17 @@ struct CandidateFit {
     double baseline_bic = 0.0, bic = 0.0;
     int simulations = 0;
     bench::CampaignConfig improved;  ///< the config with it on at the fitted values
-    std::string error;               ///< why it could not be fitted; empty when it was
+    /// Its simulation at the fitted values on every measured level (held out too), reduced to
+    /// the measurement's features, with its damping curve: for the report's plots.
+    SimulatedFeatures simulated;
+    std::string error;  ///< why it could not be fitted; empty when it was
 };
 
 struct HypothesisTest {
     std::vector<CandidateScore> ranking;  ///< every row that applies, best first
     /// Whether pairs of the fitted rows were tried: the best single one left the fitted
-    /// levels' χ² above twice their number of features.
+    /// levels' χ² above twice their number of features (every pair), or freed two values or
+    /// more (the pairs that free no more).
     bool pairs_tried = false;
     /// Per arrangement, its options.held_out_levels highest levels when it has two more.
     std::vector<std::pair<std::string, double>> held_out;
@@ -73,7 +78,8 @@ Simulation candidate_simulation(const bench::CampaignConfig& config);
 /// Ranks the catalogue against `mismatches`, fits the best options.candidates with a positive
 /// score (each switched on in a copy of `config`, its keys freed within their intervals) on
 /// the measurement without its held-out levels, then every pair of those fitted when the best
-/// single one does not reach the noise, and compares them all. Throws what calibrate
+/// single one does not reach the noise (those no more complex than it when it does but frees
+/// two values or more), and compares them all. Throws what calibrate
 /// throws for the baseline's evaluation; a candidate that cannot be fitted keeps its error.
 HypothesisTest test_hypotheses(const bench::CampaignConfig& config, const Measurement& measurement,
                                const std::vector<FeatureMismatch>& mismatches,

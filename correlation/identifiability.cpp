@@ -172,17 +172,17 @@ std::vector<ParameterFinding> assess_identifiability(const FeatureEmulator& emul
         }
         std::sort(points.begin(), points.end());
         for (const auto& [t, m] : points) {
-            f.profile.values.push_back(free[j].lo + t * (free[j].hi - free[j].lo));
+            f.profile.values.push_back(free[j].value_at(t));
             f.profile.misfit.push_back(m);
         }
-        f.lo95 = free[j].lo + ends[0] * (free[j].hi - free[j].lo);
-        f.hi95 = free[j].lo + ends[1] * (free[j].hi - free[j].lo);
-        const double width = free[j].hi - free[j].lo;
-        const double share = (f.hi95 - f.lo95) / width;
+        f.lo95 = free[j].value_at(ends[0]);
+        f.hi95 = free[j].value_at(ends[1]);
+        // The share of the search interval, in the coordinates it was searched in.
+        const double share = ends[1] - ends[0];
         // An interval that reaches an end of the search interval is a bound, not a value: the
         // data do not exclude that end (nor, perhaps, what lies beyond it).
         const bool at_an_end = ends[0] <= kAtAnEnd || ends[1] >= 1.0 - kAtAnEnd;
-        const double value = free[j].lo + best_u[j] * width;
+        const double value = free[j].value_at(best_u[j]);
         const double relative = value != 0.0 ? 0.5 * (f.hi95 - f.lo95) / std::abs(value)
                                              : std::numeric_limits<double>::infinity();
         f.identifiable =

@@ -18,9 +18,6 @@
 namespace sb::distributed {
 namespace {
 
-/// How long a rank sleeps between two looks at an MPI request it waits for.
-constexpr std::chrono::milliseconds kPollInterval{1};
-
 /// Whether an MPI launcher started this process, and with how many ranks (0: none).
 int launcher_ranks() {
     for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE", "MPI_LOCALNRANKS"}) {
@@ -31,6 +28,9 @@ int launcher_ranks() {
 }
 
 #if SB_WITH_MPI
+
+/// How long a rank sleeps between two looks at an MPI request it waits for.
+constexpr std::chrono::milliseconds kPollInterval{1};
 
 void check(int code, const char* call) {
     if (code != MPI_SUCCESS) throw std::runtime_error(std::string("MPI: ") + call + " failed");

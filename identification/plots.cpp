@@ -16,8 +16,6 @@
 
 namespace sb::identification {
 
-namespace {
-
 namespace fs = std::filesystem;
 
 std::string file_safe(const std::string& name) {
@@ -30,8 +28,7 @@ std::string file_safe(const std::string& name) {
     return out;
 }
 
-/// A gnuplot single-quoted string: a quote inside is doubled.
-std::string quoted(const std::string& s) {
+std::string gnuplot_quoted(const std::string& s) {
     std::string out = "'";
     for (char c : s) {
         out += c;
@@ -39,6 +36,10 @@ std::string quoted(const std::string& s) {
     }
     return out + "'";
 }
+
+namespace {
+
+std::string quoted(const std::string& s) { return gnuplot_quoted(s); }
 
 /// A shell single-quoted string.
 std::string shell_quoted(const std::string& s) {
@@ -217,20 +218,27 @@ PlotResult write_plots(const fs::path& out_dir, const std::vector<LevelIdentific
     }
     result.script = dir / "plots.gp";
     write_file(result.script, gp.str());
+    render_gnuplot(options.render, result);
+    return result;
+}
 
-    const std::string how = "cd " + shell_quoted(dir.string()) + " && gnuplot plots.gp";
-    if (!options.render) {
+void render_gnuplot(bool render, PlotResult& result) {
+    const fs::path dir = result.script.parent_path();
+    // The script's name is ours (plots.gp, diagnosis.gp): no quoting needed.
+    const std::string how =
+        "cd " + shell_quoted(dir.string()) + " && gnuplot " + result.script.filename().string();
+    if (!render) {
         result.message = "plots not rendered; to make the SVGs run: " + how;
-        return result;
+        return;
     }
     if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
         result.message = "gnuplot not found on PATH; to make the SVGs run: " + how;
-        return result;
+        return;
     }
     if (std::system((how + " >gnuplot.log 2>&1").c_str()) != 0) {
         result.message = "gnuplot failed on " + result.script.string() + " (see " +
                          (dir / "gnuplot.log").string() + ")";
-        return result;
+        return;
     }
     result.rendered = true;
     for (const auto& svg : result.svg) {
@@ -240,7 +248,6 @@ PlotResult write_plots(const fs::path& out_dir, const std::vector<LevelIdentific
                              (dir / "gnuplot.log").string() + ")";
         }
     }
-    return result;
 }
 
 }  // namespace sb::identification

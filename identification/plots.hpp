@@ -41,4 +41,16 @@ PlotResult write_plots(const std::filesystem::path& out_dir,
                        const std::vector<LevelIdentification>& levels,
                        const PlotOptions& options = {});
 
+/// Runs gnuplot on result.script in its folder when `render` and gnuplot is on PATH (its
+/// messages to gnuplot.log there), and checks that every SVG of result.svg was written:
+/// sets result.rendered, or result.message saying how to render or why gnuplot failed.
+void render_gnuplot(bool render, PlotResult& result);
+
+/// `name` with every character other than letters, digits, '-', '_', '.' made '_' ("unnamed"
+/// when empty): for file names made of arrangement names.
+std::string file_safe(const std::string& name);
+
+/// A gnuplot single-quoted string: a quote inside is doubled.
+std::string gnuplot_quoted(const std::string& s);
+
 }  // namespace sb::identification

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds with warnings as errors and runs every test; then runs the
-# unit tests again under AddressSanitizer + UndefinedBehaviorSanitizer; then runs every
-# libFuzzer target for a short while (SB_FUZZ_SECONDS, default 20 s each).
+# Installs what is missing, builds with warnings as errors and runs every test; then builds
+# with clang, AddressSanitizer + UndefinedBehaviorSanitizer, runs the unit tests again and
+# every libFuzzer target for a short while (SB_FUZZ_SECONDS, default 20 s each).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -22,22 +22,21 @@ cmake --preset ci >/dev/null
 cmake --build --preset ci -j "$jobs"
 ctest --preset ci -j "$jobs"
 
-echo "== AddressSanitizer + UndefinedBehaviorSanitizer, unit tests"
-cmake --preset ci-asan-ubsan >/dev/null
-# Only the unit suites run under the sanitizers, so only they (and what they link) are built.
-cmake --build --preset ci-asan-ubsan -j "$jobs" --target sb_unit_tests
-ctest --preset ci-asan-ubsan -j "$jobs"
-
-echo "== libFuzzer targets, ${SB_FUZZ_SECONDS:-20} s each (clang, ASan + UBSan; docs/development.md)"
-cmake --preset fuzz >/dev/null
-cmake --build --preset fuzz -j "$jobs"
-# One target per core at a time; each one's output goes to build/fuzz/logs/TARGET.log and is
+echo "== clang with AddressSanitizer + UndefinedBehaviorSanitizer: unit tests, then the libFuzzer targets"
+echo "   ${SB_FUZZ_SECONDS:-20} s each (docs/development.md)"
+# One build for both: the libraries carry the sanitizers and libFuzzer's coverage, the unit
+# suites and the fuzz targets link them.
+cmake --preset ci-sanitize >/dev/null
+cmake --build --preset ci-sanitize -j "$jobs"
+ctest --preset ci-sanitize -j "$jobs"
+# One target per core at a time; each one's output goes to build/ci-sanitize/logs/TARGET.log and is
 # shown when the target finds an input that crashes, hangs or runs out of memory.
-mkdir -p build/fuzz/logs
+mkdir -p build/ci-sanitize/logs
 printf '%s\n' config recording uff58 matrix_market checkpoint |
-    SB_FUZZ_NO_BUILD=1 xargs -P "$jobs" -I{} bash -c \
-        'if ! scripts/fuzz.sh {} "${SB_FUZZ_SECONDS:-20}" >build/fuzz/logs/{}.log 2>&1; then
-             tail -n 80 build/fuzz/logs/{}.log; echo "fuzz {}: FAILED (build/fuzz/logs/{}.log)"
+    SB_FUZZ_NO_BUILD=1 SB_FUZZ_BUILD_DIR=build/ci-sanitize xargs -P "$jobs" -I{} bash -c \
+        'log=build/ci-sanitize/logs/{}.log
+         if ! scripts/fuzz.sh {} "${SB_FUZZ_SECONDS:-20}" >"$log" 2>&1; then
+             tail -n 80 "$log"; echo "fuzz {}: FAILED ($log)"
              exit 255
          fi
-         echo "fuzz {}: $(grep -a -m1 DONE build/fuzz/logs/{}.log)"'
+         echo "fuzz {}: $(grep -a -m1 DONE "$log")"'

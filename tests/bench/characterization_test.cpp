@@ -14,12 +14,15 @@
 #include "campaign_fixtures.hpp"
 #include "core/units.hpp"
 #include "dem/setup.hpp"
+#include "tests/support/impact_damper.hpp"
 #include "tests/support/small_beam_config.hpp"
 
 namespace sb::bench {
 namespace {
 
 using Complex = std::complex<double>;
+using sb::test::impact_phase;
+using sb::test::plastic_particle_apparent_mass;
 
 /// One steel sphere (3 mm) on the axis of a cylinder with an axial free gap `gap_m`, no
 /// gravity (so that the particle's motion is the textbook impact oscillator), no friction nor
@@ -48,35 +51,6 @@ EnclosureSetup single_particle(double gap_m, double e) {
 
 double sphere_mass_kg(double diameter_m, double density_kg_m3) {
     return density_kg_m3 * kPi / 6.0 * diameter_m * diameter_m * diameter_m;
-}
-
-/// The impact phase psi of a plastic particle in a gap D shaken as a = A sin(w t),
-/// X = A / w^2: it leaves one wall when the acceleration changes sign, flies at the wall's
-/// largest speed A / w, and meets the other wall when its relative travel
-/// X (psi - sin psi) equals D.
-double impact_phase(double gap_over_amplitude) {
-    double lo = 0.0;
-    double hi = kPi;
-    for (int k = 0; k < 200; ++k) {
-        const double mid = 0.5 * (lo + hi);
-        (mid - std::sin(mid) < gap_over_amplitude ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
-}
-
-/// Apparent mass of a plastic (e = 0) particle of mass m in a gap, no gravity, while
-/// D / X < pi (the flight ends within the half period). Per half period: flight from 0 to
-/// psi (no force), an impact whose impulse on the wall is -m A/w (1 - cos psi), then the
-/// particle rides the wall, F = -m A sin(phi), until pi; the other half is the mirror image.
-/// Q1 = (2/pi) [ -m A int_psi^pi sin(phi) e^{-i phi} dphi - m A (1 - cos psi) e^{-i psi} ],
-/// M = -Q1 / a1 with a1 = -i A. psi -> 0 gives M = m; -Im M = m (1 - cos psi)^2 / pi, which
-/// is the two impacts' energy loss m (A/w)^2 (1 - cos psi)^2 per period as a power.
-Complex plastic_particle_apparent_mass(double m, double gap_over_amplitude) {
-    const double psi = impact_phase(gap_over_amplitude);
-    const Complex i(0.0, 1.0);
-    const Complex integral =
-        1.0 / (2.0 * i) * ((kPi - psi) + (1.0 - std::exp(-2.0 * i * psi)) / (2.0 * i));
-    return m * (2.0 * i / kPi) * (integral + (1.0 - std::cos(psi)) * std::exp(-i * psi));
 }
 
 HarmonicDrive drive_along_axis(double acceleration_m_s2, double frequency_hz) {

@@ -142,6 +142,31 @@ TEST(DottedPath, ACheckErrorAfterAnOverrideIsPlacedAtTheOverride) {
         (std::vector<std::string>{"--set: count = 3: must be <= the number of levels (count)"}));
 }
 
+TEST(DottedPath, OneNumberOfAVectorOrAnArrayIsAValueOfItsOwn) {
+    Loaded l = load();
+    const Origin o{"--set", 0, 0};
+    EXPECT_EQ(std::get<double>(get(model_schema(), &l.model, "levels[1]")), 2.0);
+    const Declaration& d = declaration(model_schema(), &l.model, "levels[2]");
+    EXPECT_EQ(d.type, Type::number);
+    EXPECT_EQ(d.unit, "g");
+    set_text(model_schema(), &l.model, l.where, "levels[1]", "2.5", o);
+    EXPECT_EQ(l.model.levels, (std::vector<double>{1.0, 2.5, 3.0}));
+    set(model_schema(), &l.model, l.where, "position[2]", 0.25, o);
+    EXPECT_EQ(l.model.position[2], 0.25);
+    EXPECT_EQ(l.model.position[0], 0.0);
+    // Checked like the whole value: the bound of every element, and the checks across keys.
+    EXPECT_EQ(errors_of([&] { set_text(model_schema(), &l.model, l.where, "levels[0]", "-1", o); }),
+              (std::vector<std::string>{"--set: levels[0] = -1: must be > 0 (levels, number 0 "
+                                        "[g])"}));
+    EXPECT_EQ(l.model.levels[0], 1.0);
+    for (const char* path : {"levels[3]", "position[3]", "levels[0].x", "length_m[0]"}) {
+        const auto errors =
+            errors_of([&] { set_text(model_schema(), &l.model, l.where, path, "1", o); });
+        ASSERT_EQ(errors.size(), 1u) << path;
+        EXPECT_EQ(errors[0].rfind("--set: ", 0), 0u) << errors[0];
+    }
+}
+
 TEST(DottedPath, SplitAssignmentNeedsAKeyAndAnEqualsSign) {
     std::string key;
     std::string value;

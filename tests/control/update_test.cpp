@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 namespace sb::control {
 namespace {
@@ -76,7 +77,7 @@ TEST(Update, StepsAreLimitedByTheFactorAndTheBounds) {
     EXPECT_EQ(limit_step(1.0, 10.0, o), 2.0);
     EXPECT_EQ(limit_step(1.0, 0.1, o), 0.5);
     EXPECT_EQ(limit_step(1.0, -4.0, o), 0.5);
-    EXPECT_EQ(limit_step(1.0, INFINITY, o), 2.0);
+    EXPECT_EQ(limit_step(1.0, std::numeric_limits<double>::infinity(), o), 2.0);
     EXPECT_EQ(limit_step(2.0, 10.0, o), 3.0);
     EXPECT_EQ(limit_step(0.4, 0.1, o), 0.3);
     EXPECT_EQ(limit_step(1.0, 1.3, o), 1.3);

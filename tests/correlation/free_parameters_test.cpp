@@ -78,6 +78,28 @@ TEST(FreeParameters, ValuesSetAsIfTheFileHeldThemAndTheWallFrictionFollows) {
     EXPECT_DOUBLE_EQ(to_unit(free, {0.55})[0], 0.5);
 }
 
+TEST(FreeParameters, ALogScaleSearchesTheRatioAndANumberOfAVectorCanBeFreed) {
+    const auto config = h0();
+    const auto free =
+        parse_free_parameters(config, {"structure.beam.youngs_modulus_pa=1e10:1e12:log",
+                                       "structure.excitation.direction[2]=0.5:1"});
+    ASSERT_EQ(free.size(), 2U);
+    EXPECT_TRUE(free[0].log_scale);
+    EXPECT_FALSE(free[1].log_scale);
+    // The middle of a log interval is the geometric mean.
+    const auto values = to_values(free, {0.5, 0.5});
+    EXPECT_NEAR(values[0], 1e11, 1e-4);
+    EXPECT_NEAR(to_unit(free, {1e11, 0.75})[0], 0.5, 1e-12);
+    EXPECT_EQ(free[1].start, 1.0);
+    const auto changed = with_values(config, free, values);
+    EXPECT_NEAR(changed.structure.beam.youngs_modulus_pa, 1e11, 1e-4);
+    EXPECT_EQ(changed.structure.excitation.direction.z(), 0.75);
+    EXPECT_NE(error_text([&] {
+                  parse_free_parameters(config, {"structure.beam.youngs_modulus_pa=0:1e12:log"});
+              }).find("a log scale needs MIN > 0"),
+              std::string::npos);
+}
+
 TEST(SpaceFilling, HaltonIsTheRadicalInverseInPrimeBases) {
     const auto h = halton(4, 2);
     // Index 1..4 in base 2: 1/2, 1/4, 3/4, 1/8; in base 3: 1/3, 2/3, 1/9, 4/9.
