@@ -127,6 +127,10 @@ DiagnosisResult diagnose(const bench::CampaignConfig& config, const std::filesys
     // Locate: the features beyond the noise and their scaling with the level.
     result.mismatches = locate_mismatch(result.measured, result.simulated);
     for (const auto& m : result.mismatches) say(m.sentence);
+    result.bands = band_residuals(result.measurement, result.baseline, result.measured);
+    for (const auto& b : result.bands) {
+        if (b.beyond_noise) say(b.sentence);
+    }
     for (std::size_t p = 0; p < options.drift.size(); ++p) {
         const auto& parameter = options.drift[p];
         say("calibrating " + parameter.path + " level by level");
@@ -161,6 +165,12 @@ DiagnosisResult diagnose(const bench::CampaignConfig& config, const std::filesys
         ho.calibration.progress = options.progress;
         result.hypotheses = test_hypotheses(config, result.measurement, result.mismatches, ho);
         say(result.hypotheses->sentence);
+    }
+    for (const auto& b : result.bands) {
+        if (b.beyond_noise) {
+            what.push_back(b.arrangement + " " + num(b.level_g, 3) + " g FRF " +
+                           frf_band_name(b.band));
+        }
     }
     for (const auto& d : result.drifts) {
         if (d.drifts) what.push_back(d.parameter.path + " drifts with the level");
@@ -220,6 +230,19 @@ void write_diagnosis(const std::filesystem::path& out_dir, const DiagnosisResult
           << "slope_sigma_per_g = " << num(d.slope_sigma) << '\n'
           << "finding = " << toml_string(d.sentence) << '\n';
     }
+    for (const auto& b : r.bands) {
+        t << "\n[[bands]]\n"
+          << "arrangement = " << toml_string(b.arrangement) << '\n'
+          << "level_g = " << num(b.level_g, 10) << '\n'
+          << "band = " << toml_string(frf_band_name(b.band)) << '\n'
+          << "frequencies = " << b.points << '\n'
+          << "chi2_magnitude = " << num(b.chi2_magnitude) << '\n'
+          << "chi2_phase = " << num(b.chi2_phase) << '\n'
+          << "mean_log_magnitude_ratio = " << num(b.mean_log_ratio) << '\n'
+          << "mean_phase_difference_rad = " << num(b.mean_phase_rad) << '\n'
+          << "beyond_noise = " << (b.beyond_noise ? "true" : "false") << '\n'
+          << "finding = " << toml_string(b.sentence) << '\n';
+    }
     if (r.hypotheses) {
         const auto& h = *r.hypotheses;
         t << "\n[hypotheses]\n"
@@ -276,6 +299,27 @@ void write_diagnosis(const std::filesystem::path& out_dir, const DiagnosisResult
        << "Measured: `" << r.measurement.directory.string() << "`\n\n"
        << "**Verdict: " << r.verdict << ".**\n\n## Features per level\n\n";
     for (const auto& m : r.mismatches) md << "- " << m.sentence << ".\n";
+    if (!r.bands.empty()) {
+        md << "\n## The FRF per band\n\n";
+        int within = 0;
+        for (const auto& b : r.bands) {
+            if (b.beyond_noise) {
+                md << "- " << b.sentence << ".\n";
+            } else {
+                ++within;
+            }
+        }
+        const int all = static_cast<int>(r.bands.size());
+        if (within == all) {
+            md << "All " << all << " bands";
+        } else if (within > 0) {
+            md << "The " << within << " other band" << (within > 1 ? "s" : "") << " of " << all;
+        }
+        if (within > 0) {
+            md << " (each level below, around and above its resonance) agree"
+               << (within > 1 ? "" : "s") << " within the noise.\n";
+        }
+    }
     if (!r.drifts.empty()) {
         md << "\n## Values calibrated level by level\n\n";
         for (const auto& d : r.drifts) md << "- " << d.sentence << ".\n";

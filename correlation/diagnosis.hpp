@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "bench/campaign.hpp"
+#include "correlation/band_residuals.hpp"
 #include "correlation/calibration.hpp"
 #include "correlation/drift.hpp"
 #include "correlation/features.hpp"
@@ -50,6 +51,9 @@ struct DiagnosisResult {
     /// measured frequencies, its damping curve): for the report's plots.
     SimulatedFeatures baseline;
     std::vector<FeatureMismatch> mismatches;  ///< beyond the noise first
+    /// The FRF per level below, around and above its resonance (measurements with points);
+    /// beyond the noise first.
+    std::vector<BandResidual> bands;
     std::vector<DriftResult> drifts;
     /// The catalogue ranked and its best candidates fitted (when a feature disagreed).
     std::optional<HypothesisTest> hypotheses;

@@ -142,7 +142,7 @@ identification::PlotResult write_diagnosis_plots(const fs::path& out_dir,
     std::ostringstream gp;
     gp << "# Measured, baseline and improved (shakerbench diagnose); run here: gnuplot "
           "diagnosis.gp\nset terminal svg size 900,650 dynamic background rgb 'white'\n"
-       << "set key outside right\n";
+       << "set key outside right\nset offsets graph 0.03, graph 0.03, 0, 0\n";
     for (const auto& arrangement : arrangements_of(r.measurement)) {
         const std::string name = identification::file_safe(arrangement);
         const fs::path frf = dir / (name + "-frf.dat");
@@ -154,9 +154,7 @@ identification::PlotResult write_diagnosis_plots(const fs::path& out_dir,
 
         const fs::path frf_svg = out_dir / ("diagnosis-" + name + "-frf.svg");
         gp << "\nset output " << gnuplot_quoted("../" + frf_svg.filename().string()) << '\n'
-           << "set title "
-           << gnuplot_quoted(arrangement + ": |H| measured (points), baseline (dashed)" +
-                             (improved ? ", " + improved_name + " (solid)" : ""))
+           << "set title " << gnuplot_quoted(arrangement + ": the FRF per level")
            << "\nset xlabel 'frequency [Hz]'\nset ylabel '|H|'\nplot ";
         const auto level_list = levels_of(r.measurement, arrangement);
         for (std::size_t k = 0; k < level_list.size(); ++k) {
