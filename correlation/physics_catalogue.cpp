@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 
+#include "config/schema.hpp"
 #include "correlation/free_parameters.hpp"
 
 namespace sb::correlation {
@@ -16,6 +18,47 @@ using Kind = structure::StructureSpec::Kind;
 constexpr const char* kSensorMass = "sensor mass (catalogue)";
 /// Suffix of the rotational springs the clamp-compliance row adds at a clamp.
 constexpr const char* kClampSpring = "_rotational_spring";
+
+/// The DEM dampers of `c` that `lacks` says leave a physics out.
+std::vector<bench::DamperSpec*> dem_dampers_lacking(
+    bench::CampaignConfig& c, const std::function<bool(const bench::ContactSpec&)>& lacks) {
+    std::vector<bench::DamperSpec*> out;
+    for (auto& d : c.campaign.dampers) {
+        if (d.model == bench::DamperSpec::Model::dem && lacks(d.contact)) out.push_back(&d);
+    }
+    return out;
+}
+
+/// A damper-side row's verbs: switching it on changes (`change`) the contact of every DEM
+/// damper that `lacks` the physics and frees `key` of each (relative to its contact table,
+/// with ":MIN:MAX..." when it has one); it applies while one such damper is left.
+using Lacks = bool (*)(const bench::ContactSpec&);
+std::function<std::vector<std::string>(bench::CampaignConfig&)> switch_contacts(
+    Lacks lacks, void (*change)(bench::ContactSpec&), std::string key) {
+    return [lacks, change, key](bench::CampaignConfig& c) {
+        std::vector<std::string> keys;
+        for (auto* d : dem_dampers_lacking(c, lacks)) {
+            change(d->contact);
+            keys.push_back(config::join_path("dampers", d->name) + ".contact." + key);
+        }
+        return keys;
+    };
+}
+std::function<bool(const bench::CampaignConfig&)> has_dem_damper_lacking(Lacks lacks) {
+    return [lacks](const bench::CampaignConfig& c) {
+        auto copy = c;
+        return !dem_dampers_lacking(copy, lacks).empty();
+    };
+}
+
+bool lacks_rolling_resistance(const bench::ContactSpec& contact) {
+    return contact.rolling == dem::RollingLaw::none ||
+           contact.particle_particle.rolling_friction == 0.0;
+}
+
+bool lacks_static_friction(const bench::ContactSpec& contact) {
+    return contact.tangential == dem::TangentialLaw::directional_coulomb;
+}
 
 /// The first clamped support of a beam, or null.
 structure::Support* first_clamp(structure::BeamSpec& beam) {
@@ -161,6 +204,34 @@ std::vector<CatalogueEntry> build_catalogue() {
                         return s.name.find(kClampSpring) != std::string::npos;
                     });
          }});
+    rows.push_back(
+        {"rolling-resistance",
+         "the particles' rolling resistance",
+         "A torque mu_r R* F_n that resists the spheres' rolling (contact.rolling = "
+         "\"constant_torque\"; Ai et al. 2011, model A): it dissipates in a dense bed at the "
+         "low levels, before the particles lift off, and moves the onset of the damping; the "
+         "collisional regime hardly feels it. Fitted on the coupled campaign.",
+         {{LevelFeature::damping_ratio, ScalingShape::inverse, +1}},
+         switch_contacts(
+             lacks_rolling_resistance,
+             [](bench::ContactSpec& c) { c.rolling = dem::RollingLaw::constant_torque; },
+             "rolling_friction"),
+         has_dem_damper_lacking(lacks_rolling_resistance)});
+    rows.push_back(
+        {"static-friction",
+         "static friction at the particles' contacts",
+         "Contacts that stick before they slide: a tangential spring with its history, capped "
+         "by Coulomb (contact.tangential = \"coulomb_spring\", the linear form of "
+         "Mindlin-Deresiewicz), in place of a stateless friction that only slides. It "
+         "dissipates below gross sliding, at the lowest levels, with a slight softening; its "
+         "value is the tangential stiffness over the normal one, searched from 0.05 to 1 on a "
+         "log scale. Fitted on the coupled campaign.",
+         {{LevelFeature::damping_ratio, ScalingShape::linear, +1}},
+         switch_contacts(
+             lacks_static_friction,
+             [](bench::ContactSpec& c) { c.tangential = dem::TangentialLaw::coulomb_spring; },
+             "tangential_stiffness_ratio=0.05:1:log"),
+         has_dem_damper_lacking(lacks_static_friction)});
     return rows;
 }
 
