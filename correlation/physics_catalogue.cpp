@@ -46,8 +46,10 @@ std::function<std::vector<std::string>(bench::CampaignConfig&)> switch_contacts(
 }
 std::function<bool(const bench::CampaignConfig&)> has_dem_damper_lacking(Lacks lacks) {
     return [lacks](const bench::CampaignConfig& c) {
-        auto copy = c;
-        return !dem_dampers_lacking(copy, lacks).empty();
+        return std::any_of(c.campaign.dampers.begin(), c.campaign.dampers.end(),
+                           [lacks](const bench::DamperSpec& d) {
+                               return d.model == bench::DamperSpec::Model::dem && lacks(d.contact);
+                           });
     };
 }
 
@@ -198,8 +200,11 @@ std::vector<CatalogueEntry> build_catalogue() {
          {{LevelFeature::natural_frequency, ScalingShape::constant, -1}},
          [](bench::CampaignConfig& c) { return std::vector<std::string>{make_clamp_compliant(c)}; },
          [](const bench::CampaignConfig& c) {
-             auto beam = c.structure.beam;
-             return c.structure.kind == Kind::beam && first_clamp(beam) != nullptr &&
+             const auto& beam = c.structure.beam;
+             const bool clamped = std::any_of(
+                 beam.supports.begin(), beam.supports.end(),
+                 [](const auto& s) { return s.kind == structure::SupportKind::clamped; });
+             return c.structure.kind == Kind::beam && clamped &&
                     std::none_of(beam.supports.begin(), beam.supports.end(), [](const auto& s) {
                         return s.name.find(kClampSpring) != std::string::npos;
                     });

@@ -25,6 +25,7 @@
 #include "structure/frf.hpp"
 #include "structure/linear_model.hpp"
 #include "structure/modal_analysis.hpp"
+#include "tests/support/described_damper.hpp"
 
 namespace sb::bench {
 namespace {
@@ -38,27 +39,8 @@ using test::paper000_h0_with;
 /// frequency, on a grid that covers 0.3-3 g and 5-8 Hz.
 fs::path write_table(const fs::path& dir, const std::function<Complex(double)>& mass,
                      double bed_mass_kg) {
-    CharacterizationTable t;
-    t.config = "made-up";
-    for (double level : {0.3, 0.7, 1.0, 1.5, 3.0}) {
-        for (double f : {5.0, 6.5, 8.0}) {
-            CharacterizationRow r;
-            r.damper = "pd";
-            r.arrangement = "H-0";
-            r.level_g = level;
-            r.acceleration_m_s2 = std::sqrt(2.0) * g_to_m_s2(level);
-            r.frequency_hz = f;
-            r.bed_mass_kg = bed_mass_kg;
-            r.seeds = 1;
-            r.apparent_mass_kg = mass(r.acceleration_m_s2);
-            r.power_w = 0.0;
-            t.rows.push_back(r);
-        }
-    }
-    fs::create_directories(dir);
-    const fs::path file = dir / "characterization.csv";
-    write_file_atomically(file, characterization_csv_text(t));
-    return file;
+    return sb::test::write_described_damper(dir, {0.3, 0.7, 1.0, 1.5, 3.0}, {5.0, 6.5, 8.0},
+                                            bed_mass_kg, [&](double a, double) { return mass(a); });
 }
 
 /// The paper-000 H-0 campaign at 1 g on 15 points within 1.5 % of the first mode, its damper

@@ -24,6 +24,7 @@
 #include "core/text_file.hpp"
 #include "core/units.hpp"
 #include "correlation/diagnosis.hpp"
+#include "tests/support/described_damper.hpp"
 #include "tests/support/impact_damper.hpp"
 
 namespace sb::correlation {
@@ -72,31 +73,12 @@ bench::CampaignConfig with_impact_damper(bench::CampaignConfig config, const std
     // The shipped config's spheres: 3 mm of steel (7800 kg/m^3).
     const double kMass = 27.0 * 7800.0 * kPi / 6.0 * std::pow(0.003, 3);
     constexpr double kGap = 0.008;
-    bench::CharacterizationTable table;
-    table.config = "closed-form plastic impact damper";
-    for (const double level : {0.5, 0.7, 1.0, 1.4, 2.0, 2.8, 4.0}) {
-        for (const double f : {5.5, 6.0, 6.5, 7.0, 7.5}) {
-            bench::CharacterizationRow r;
-            r.damper = "pd";
-            r.arrangement = "H-0";
-            r.level_g = level;
-            r.acceleration_m_s2 = std::sqrt(2.0) * g_to_m_s2(level);
-            r.frequency_hz = f;
-            r.bed_mass_kg = kMass;
-            r.seeds = 1;
+    const auto file = sb::test::write_described_damper(
+        fresh_dir(name + "-damper"), {0.5, 0.7, 1.0, 1.4, 2.0, 2.8, 4.0}, {5.5, 6.0, 6.5, 7.0, 7.5},
+        kMass, [&](double a, double f) {
             const double w = hz_to_rad_s(f);
-            r.apparent_mass_kg =
-                sb::test::plastic_particle_apparent_mass(kMass, kGap * w * w / r.acceleration_m_s2);
-            // -Im M = 2 P / (w |a1|^2)
-            r.power_w =
-                -r.apparent_mass_kg.imag() * w * r.acceleration_m_s2 * r.acceleration_m_s2 / 2.0;
-            table.rows.push_back(r);
-        }
-    }
-    const auto dir = fresh_dir(name + "-damper");
-    std::filesystem::create_directories(dir);
-    const auto file = dir / "characterization.csv";
-    write_file_atomically(file, bench::characterization_csv_text(table));
+            return sb::test::plastic_particle_apparent_mass(kMass, kGap * w * w / a);
+        });
     bench::apply_overrides(config, {"dampers.pd.model=describing-function",
                                     "dampers.pd.characterization_file=\"" + file.string() + "\""});
     return config;
