@@ -30,6 +30,7 @@ struct DiagnoseArgs {
     std::string mode = "direct";
     int hypotheses = 3;
     int held_out = 1;
+    bool no_confirm = false;
     std::string out_dir;
     int threads = 0;
     correlation::StatedUncertainty stated;
@@ -84,6 +85,7 @@ int run(const DiagnoseArgs& args) {
         options.calibration.search.budget = args.budget;
         options.hypotheses = args.hypotheses;
         options.held_out_levels = args.held_out;
+        options.confirm = !args.no_confirm;
         options.calibration.search.mode = args.mode == "surrogate"
                                               ? correlation::SearchMode::surrogate
                                               : correlation::SearchMode::direct;
@@ -188,6 +190,9 @@ void register_diagnose_command(CLI::App& app, int& exit_code) {
                     "highest levels of each arrangement the hypotheses are not fitted on but "
                     "checked against (default 1; kept only where two levels or more remain)")
         ->check(CLI::Range(0, 100));
+    cmd->add_flag("--no-confirm", args->no_confirm,
+                  "do not simulate the winner again by the coupled campaign (describing-function "
+                  "dampers as their DEM beds) when it was fitted on the prediction");
     cmd->add_option("-o,--out", args->out_dir,
                     "output directory (default: out/<campaign name>-diagnosis)");
     cmd->add_option("-j,--threads", args->threads, "threads (default: all cores)")
@@ -210,6 +215,7 @@ void register_diagnose_command(CLI::App& app, int& exit_code) {
         if (args->held_out != 1) {
             args->command_line += " --held-out " + std::to_string(args->held_out);
         }
+        if (args->no_confirm) args->command_line += " --no-confirm";
         if (!args->out_dir.empty()) args->command_line += " --out " + args->out_dir;
         args->command_line += overrides_text(args->overrides);
         exit_code = run(*args);

@@ -8,10 +8,16 @@
 namespace sb::bench {
 
 Eigen::Vector3d arrangement_gravity(const ArrangementSpec& arrangement) {
-    if (arrangement.oscillation == ArrangementSpec::Oscillation::vertical) {
-        return {0.0, 0.0, -kStandardGravity};
-    }
-    return {0.0, -kStandardGravity, 0.0};
+    const Eigen::Vector3d nominal =
+        arrangement.oscillation == ArrangementSpec::Oscillation::vertical
+            ? Eigen::Vector3d(0.0, 0.0, -kStandardGravity)
+            : Eigen::Vector3d(0.0, -kStandardGravity, 0.0);
+    if (arrangement.gravity_tilt_deg == 0.0) return nominal;
+    const double angle = deg_to_rad(arrangement.gravity_tilt_deg);
+    const double c = std::cos(angle);
+    const double s = std::sin(angle);
+    // The rotation about x: (y, z) -> (c y - s z, s y + c z).
+    return {nominal.x(), c * nominal.y() - s * nominal.z(), s * nominal.y() + c * nominal.z()};
 }
 
 Eigen::Matrix3d mounting_rotation(const ArrangementSpec& arrangement) {

@@ -12,7 +12,7 @@ namespace sb::bench {
 
 /// Gravity in the structure frame [m/s^2]. The shaker drives z. Horizontal oscillation: the
 /// section's long side (y) is vertical, gravity along -y. Vertical oscillation: gravity
-/// along -z.
+/// along -z. Either turned about the beam axis x by the arrangement's gravity_tilt_deg.
 Eigen::Vector3d arrangement_gravity(const ArrangementSpec& arrangement);
 
 /// Rotation from the enclosure frame (axis = local z) to the structure frame: the axis tilted

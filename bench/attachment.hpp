@@ -13,38 +13,13 @@
 #include <variant>
 #include <vector>
 
+#include "bench/attachment_types.hpp"
 #include "bench/describing_function.hpp"
+#include "bench/iwan_joint.hpp"
 #include "dem/solver.hpp"
 #include "dem/solver_state.hpp"
 
 namespace sb::bench {
-
-/// Where a point of the structure is and how it moves (structure frame).
-struct PointMotion {
-    Eigen::Vector3d position_m = Eigen::Vector3d::Zero();    ///< rest position + displacement
-    Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  ///< of the point's small rotation
-    Eigen::Vector3d velocity_m_s = Eigen::Vector3d::Zero();
-    Eigen::Vector3d angular_velocity_rad_s = Eigen::Vector3d::Zero();
-};
-
-/// Force [N] and moment [N m] at a point, structure frame.
-struct PointLoad {
-    Eigen::Vector3d force_n = Eigen::Vector3d::Zero();
-    Eigen::Vector3d moment_nm = Eigen::Vector3d::Zero();
-};
-
-/// What a describing-function damper carries between points: what it knows of its point's
-/// motion.
-struct DescribingState {
-    double acceleration_m_s2 = 0.0;    ///< peak |a1| of the point's last whole period [m/s^2]
-    double mean_displacement_m = 0.0;  ///< mean displacement along the direction over it [m]
-};
-
-/// What an attachment carries between points and through a checkpoint.
-struct AttachmentState {
-    std::optional<dem::SolverState> dem;        ///< a DEM damper's particles, histories and clock
-    std::optional<DescribingState> describing;  ///< a describing-function damper's amplitude
-};
 
 /// A particle damper simulated by DEM: its enclosure moves with the point (mounted with a
 /// rotation and an offset), the particles are stepped, the wall force and moment load the
@@ -163,7 +138,7 @@ struct StatelessAttachment {
     [[nodiscard]] AttachmentState state() const { return {}; }
     [[nodiscard]] AttachmentState state_at(const PointMotion&) const { return {}; }
     void restore(const AttachmentState& s) const {
-        if (s.dem || s.describing) {
+        if (s.dem || s.describing || s.sliders) {
             throw std::invalid_argument("a stateless attachment was given a state");
         }
     }
@@ -245,7 +220,7 @@ class CubicSpring : public StatelessAttachment {
 };
 
 using AttachmentModel = std::variant<DemDamper, RigidParticles, DescribingFunctionDamper,
-                                     AirDragStrip, MicroslipDashpot, CubicSpring>;
+                                     AirDragStrip, MicroslipDashpot, CubicSpring, IwanJoint>;
 
 /// A model at a named point.
 struct Attachment {

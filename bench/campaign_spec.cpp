@@ -33,6 +33,8 @@ dem::PairProperties ContactSpec::particle_wall() const {
     wall.restitution = wall_restitution.value_or(particle_particle.restitution);
     wall.sliding_friction = wall_sliding_friction.value_or(particle_particle.sliding_friction);
     wall.rolling_friction = wall_rolling_friction.value_or(particle_particle.rolling_friction);
+    wall.dissipative_constant_s =
+        wall_dissipative_constant_s.value_or(particle_particle.dissipative_constant_s);
     return wall;
 }
 

@@ -34,6 +34,10 @@ struct ArrangementSpec {
     /// Further displacement of the enclosure's mounting face (a spacer, a side mount),
     /// structure frame [m].
     Eigen::Vector3d mount_lift_m{0.0, 0.0, 0.0};
+    /// Misalignment of the mount: gravity turned about the beam axis x by this angle
+    /// (right-handed; horizontal oscillation: a component g sin(angle) along -z, the motion)
+    /// [deg].
+    double gravity_tilt_deg = 0.0;
 
     /// Constraints across keys (the wedge tilts the damper by 45 deg).
     [[nodiscard]] Violations validate() const;
@@ -78,6 +82,7 @@ struct ContactSpec {
     std::optional<double> wall_restitution;
     std::optional<double> wall_sliding_friction;
     std::optional<double> wall_rolling_friction;
+    std::optional<double> wall_dissipative_constant_s;
     dem::Material wall_material{};
     /// Automatic stiffness: largest overlap as a fraction of the diameter at the largest
     /// expected impact speed [-].

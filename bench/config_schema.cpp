@@ -168,6 +168,13 @@ std::shared_ptr<const config::Table> arrangement_table() {
             "across y with the enclosure standing on its hypotenuse; it raises the enclosure's "
             "mounting face by half the cathetus (paper 000 Table 1: 20 mm). Needs "
             "`damper_angle_deg = 45`");
+    t.number(
+         "gravity_tilt_deg", [](ArrangementSpec & a) -> auto& { return a.gravity_tilt_deg; },
+         "misalignment of the mount: gravity turned about the beam axis x by this angle "
+         "(right-handed; horizontal oscillation: g sin(angle) along -z, the motion)")
+        .unit("deg")
+        .bound(Bound::closed(-45.0, 45.0))
+        .calibrated_within(-10.0, 10.0);
     t.vector3(
          "mount_lift_m", [](ArrangementSpec & a) -> auto& { return a.mount_lift_m; },
          "further displacement of the enclosure's mounting face (a spacer, a side mount), "
@@ -383,6 +390,52 @@ std::shared_ptr<const config::Table> cubic_spring_table() {
     return t.build();
 }
 
+std::shared_ptr<const config::Table> iwan_joint_table() {
+    TableBuilder<IwanJointSpec> t(
+        "a joint's microslip and macroslip (Iwan)",
+        "A joint at a named point that the linear model holds stuck, as a discrete Iwan "
+        "element along the excitation direction: parallel springs with Coulomb sliders whose "
+        "slip displacements follow Segalman's density phi^chi up to phi_max (slip force "
+        "F_S = K_T phi_max (1 + chi) / (2 + chi)). It adds only what slip takes away from the "
+        "stuck stiffness: damping that grows like the amplitude^(1 + chi) below macroslip, and "
+        "a slight softening.");
+    const auto on = [](const IwanJointSpec& j) { return j.on(); };
+    t.string(
+        "point", [](IwanJointSpec & j) -> auto& { return j.point; },
+        "named point of the joint (required when stiffness_n_per_m > 0)");
+    t.number(
+         "stiffness_n_per_m", [](IwanJointSpec & j) -> auto& { return j.stiffness_n_per_m; },
+         "stiffness K_T of the stuck joint, part of the linear model already (it sets how much "
+         "slip can take away, not the model's stiffness); 0 turns the joint off")
+        .unit("N/m")
+        .bound(Bound::non_negative())
+        .calibrated_within(0.0, 1e7);
+    t.number(
+         "macroslip_displacement_m",
+         [](IwanJointSpec & j) -> auto& { return j.macroslip_displacement_m; },
+         "displacement phi_max beyond which the joint's last slider moves: the whole joint "
+         "slides")
+        .unit("m")
+        .bound(Bound::positive())
+        .calibrated_within(1e-7, 1.0)
+        .when(on, "only with stiffness_n_per_m > 0");
+    t.number(
+         "exponent", [](IwanJointSpec & j) -> auto& { return j.exponent; },
+         "chi of the slip density: the damping grows like the amplitude^(1 + chi) below "
+         "macroslip (about -0.5 for bolted lap joints)")
+        .unit("-")
+        .bound(Bound::open(-1.0, 1.0))
+        .calibrated_within(-0.9, 0.0)
+        .when(on, "only with stiffness_n_per_m > 0");
+    t.integer(
+         "elements", [](IwanJointSpec & j) -> auto& { return j.elements; },
+         "Jenkins elements the density is cut into (geometric bins from 1e-4 phi_max; 96 are "
+         "within 0.6 % of 8000)")
+        .bound(Bound::at_least(2))
+        .when(on, "only with stiffness_n_per_m > 0");
+    return t.build();
+}
+
 std::shared_ptr<const config::Table> physics_table() {
     TableBuilder<PhysicsSpec> t(
         "physics a model may leave out",
@@ -395,6 +448,8 @@ std::shared_ptr<const config::Table> physics_table() {
     t.table(
         "cubic_spring", [](PhysicsSpec & p) -> auto& { return p.cubic_spring; },
         cubic_spring_table());
+    t.table(
+        "iwan_joint", [](PhysicsSpec & p) -> auto& { return p.iwan_joint; }, iwan_joint_table());
     return t.build();
 }
 
@@ -511,6 +566,8 @@ std::shared_ptr<const config::Table> build_campaign_schema() {
         check_point(c.physics.microslip.on(), c.physics.microslip.point, "physics.microslip.point");
         check_point(c.physics.cubic_spring.on(), c.physics.cubic_spring.point,
                     "physics.cubic_spring.point");
+        check_point(c.physics.iwan_joint.on(), c.physics.iwan_joint.point,
+                    "physics.iwan_joint.point");
         return out;
     });
     return root.build();

@@ -168,7 +168,8 @@ std::shared_ptr<const config::Table> contact_table() {
         .doc(
             "normal dashpot from the restitution coefficient: `restitution` picks the one that "
             "matches the normal law, or name it (`linear_dashpot` with hooke, `hertz_dashpot` "
-            "with hertz)");
+            "with hertz), or `viscoelastic` (hertz): a dissipative constant instead of a "
+            "restitution, whose restitution falls with the impact speed");
     t.choice(
          "tangential", [](ContactSpec & c) -> auto& { return c.tangential; },
          dem::kTangentialLawNames, "tangential law")
@@ -248,6 +249,31 @@ std::shared_ptr<const config::Table> contact_table() {
         .bound(Bound::non_negative())
         .follows("rolling_friction")
         .leaf("particle_wall.rolling_friction");
+    const auto viscoelastic = [](const ContactSpec& c) {
+        return c.damping == dem::DampingLaw::viscoelastic;
+    };
+    t.number(
+         "dissipative_constant_s",
+         [](ContactSpec & c) -> auto& { return c.particle_particle.dissipative_constant_s; },
+         "particle-particle dissipative constant A of the viscoelastic damping")
+        .unit("s")
+        .bound(Bound::non_negative())
+        .calibrated_within(0.0, 1e-5)
+        .when(viscoelastic, "only with damping = \"viscoelastic\"")
+        .leaf("particle_particle.dissipative_constant_s")
+        .doc(
+            "particle-particle dissipative constant A of the viscoelastic damping, F_d = 3/2 A "
+            "k sqrt(delta) delta_dot: the restitution falls with the impact speed, 1 - e = "
+            "1.15344 (3/2) A (k/m*)^(2/5) v^(1/5) to first order (Ramirez et al. 1999)");
+    t.number(
+         "wall_dissipative_constant_s",
+         [](ContactSpec & c) -> auto& { return c.wall_dissipative_constant_s; },
+         "particle-wall dissipative constant A of the viscoelastic damping")
+        .unit("s")
+        .bound(Bound::non_negative())
+        .follows("dissipative_constant_s")
+        .when(viscoelastic, "only with damping = \"viscoelastic\"")
+        .leaf("particle_wall.dissipative_constant_s");
     t.number(
          "wall_youngs_modulus_pa",
          [](ContactSpec & c) -> auto& { return c.wall_material.youngs_modulus_pa; },

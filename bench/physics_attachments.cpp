@@ -43,6 +43,13 @@ std::vector<Attachment> physics_attachments(const CampaignConfig& config,
                        CubicSpring(config.structure.excitation.direction, cubic.stiffness_n_per_m3,
                                    prepared.model.point(cubic.point).position_m)});
     }
+    const IwanJointSpec& joint = config.physics.iwan_joint;
+    if (joint.on()) {
+        out.push_back({"iwan joint", joint.point,
+                       IwanJoint(config.structure.excitation.direction, joint.stiffness_n_per_m,
+                                 joint.macroslip_displacement_m, joint.exponent, joint.elements,
+                                 prepared.model.point(joint.point).position_m)});
+    }
     return out;
 }
 
@@ -56,6 +63,9 @@ DescribingFunction::Value physics_describing(const Attachment& attachment, doubl
     }
     if (const auto* cubic = std::get_if<CubicSpring>(&attachment.model)) {
         return cubic->describing(acceleration_m_s2, frequency_hz);
+    }
+    if (const auto* joint = std::get_if<IwanJoint>(&attachment.model)) {
+        return joint->describing(acceleration_m_s2, frequency_hz);
     }
     throw std::invalid_argument("attachment " + attachment.name +
                                 " is not a catalogue physics with a describing function");

@@ -45,10 +45,27 @@ struct CubicSpringSpec {
     [[nodiscard]] bool on() const { return stiffness_n_per_m3 > 0.0; }
 };
 
+/// A joint's microslip and macroslip as a discrete Iwan element at a point, along the
+/// excitation direction (bench/iwan_joint.hpp): the joint the linear model holds stuck, with
+/// its stiffness K_T, loses stiffness and dissipates as its sliders move (Segalman's
+/// four-parameter model with beta = 0: damping like the amplitude^(1 + chi) below macroslip,
+/// with the slight softening a power-law dashpot lacks). Its slip force is
+/// F_S = K_T phi_max (1 + chi) / (2 + chi).
+struct IwanJointSpec {
+    std::string point;                       ///< named point of the joint
+    double stiffness_n_per_m = 0.0;          ///< K_T, the stuck joint's stiffness; 0: off [N/m]
+    double macroslip_displacement_m = 1e-3;  ///< phi_max: the last slider moves beyond it [m]
+    double exponent = -0.5;                  ///< chi of the slip density phi^chi [-]
+    int elements = 96;                       ///< Jenkins elements the density is cut into
+
+    [[nodiscard]] bool on() const { return stiffness_n_per_m > 0.0; }
+};
+
 struct PhysicsSpec {
     AirDragSpec air_drag;
     MicroslipSpec microslip;
     CubicSpringSpec cubic_spring;
+    IwanJointSpec iwan_joint;
 };
 
 }  // namespace sb::bench

@@ -384,7 +384,12 @@ std::string serialize_checkpoint(const SweepCheckpoint& c) {
     w.key("attachments").integer(static_cast<long long>(c.state.attachments.size())).end();
     for (std::size_t d = 0; d < c.state.attachments.size(); ++d) {
         const auto& a = c.state.attachments[d];
-        w.key("attachment").text(a.dem ? "dem" : a.describing ? "describing" : "none").end();
+        w.key("attachment")
+            .text(a.dem          ? "dem"
+                  : a.describing ? "describing"
+                  : a.sliders    ? "sliders"
+                                 : "none")
+            .end();
         w.key("load");
         for (int k = 0; k < 6; ++k) w.num(c.state.loads[d][k]);
         w.end();
@@ -395,6 +400,9 @@ std::string serialize_checkpoint(const SweepCheckpoint& c) {
                 .num(a.describing->mean_displacement_m)
                 .end();
         }
+        if (a.sliders)
+            write_vector(w, "sliders",
+                         Eigen::Map<const Eigen::VectorXd>(a.sliders->data(), a.sliders->size()));
     }
     write_rows(w, c.rows);
     write_lines(w, "log", "l", c.control_log);
@@ -493,7 +501,7 @@ SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& fil
     for (long long d = 0; d < attachments; ++d) {
         r.line("attachment");
         const std::string kind = r.text();
-        if (kind != "dem" && kind != "describing" && kind != "none") {
+        if (kind != "dem" && kind != "describing" && kind != "sliders" && kind != "none") {
             r.fail("unknown attachment '" + kind + "'");
         }
         auto load = r.line("load");
@@ -509,6 +517,10 @@ SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& fil
             described.acceleration_m_s2 = r.num(words);
             described.mean_displacement_m = r.num(words);
             a.describing = described;
+        }
+        if (kind == "sliders") {
+            const Eigen::VectorXd sliders = read_vector(r, "sliders");
+            a.sliders = std::vector<double>(sliders.data(), sliders.data() + sliders.size());
         }
         c.state.attachments.push_back(std::move(a));
     }

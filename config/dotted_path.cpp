@@ -42,6 +42,13 @@ struct Target {
 
 const char* kSeeKeys = "see docs/config.md or `shakerbench keys CONFIG` for the keys";
 
+/// A key that does not apply (yet): set_text_all() tries it again after the other
+/// assignments, one of which may switch it on.
+class NotApplicable : public ConfigException {
+  public:
+    using ConfigException::ConfigException;
+};
+
 /// The declaration of number `index` of a vector or array entry: the entry's unit, bound and
 /// calibration interval, its default's number. Made once per entry and index and kept for the
 /// program's life, as the tables' own declarations are (declaration() returns a reference).
@@ -99,7 +106,14 @@ Target resolve(const Table& root, void* object, std::string_view path, const Ori
         if (e == nullptr) fail(path, "unknown key", kSeeKeys, origin);
         t.path = join_path(t.path, part.name);
         if (!e->applies(t.object)) {
-            fail(t.path, "does not apply: " + e->decl.inactive_reason, e->decl.meaning, origin);
+            ConfigError error;
+            error.file = origin.file;
+            error.line = origin.line;
+            error.column = origin.column;
+            error.key_path = t.path;
+            error.constraint = "does not apply: " + e->decl.inactive_reason;
+            error.meaning = e->decl.meaning;
+            throw NotApplicable({error});
         }
         const bool last = i + 1 == parts.size();
         switch (e->decl.type) {
@@ -274,19 +288,39 @@ void set_text_all(const Table& root, void* object, SourceMap& where,
         where.overrides.resize(overrides_before);
     };
     Diagnostics diagnostics;
-    for (const auto& a : assignments) {
-        try {
-            // Resolved after the earlier assignments, so a path may depend on them.
-            const Target t = resolve(root, object, a.path, origin);
-            Value value;
-            if (!value_from_text(decl_of(t), a.text, t.path, origin, diagnostics, value)) continue;
-            undo.push_back({t, stored(t)});
-            assign(t, value);
-            where.overrides.emplace_back(t.value_key, origin);
-        } catch (const ConfigException& e) {
-            for (const auto& error : e.errors()) diagnostics.add(error);
+    // In order; an assignment to a key that does not apply waits for the others (one of them
+    // may switch it on: a joint's exponent before its stiffness) and is tried again while
+    // that makes progress, so the order of the assignments does not matter.
+    std::vector<const TextAssignment*> pending;
+    for (const auto& a : assignments) pending.push_back(&a);
+    std::vector<ConfigError> not_applicable;
+    for (bool progress = true; progress && !pending.empty();) {
+        progress = false;
+        not_applicable.clear();
+        std::vector<const TextAssignment*> waiting;
+        for (const TextAssignment* a : pending) {
+            try {
+                // Resolved after the earlier assignments, so a path may depend on them.
+                const Target t = resolve(root, object, a->path, origin);
+                progress = true;
+                Value value;
+                if (!value_from_text(decl_of(t), a->text, t.path, origin, diagnostics, value)) {
+                    continue;
+                }
+                undo.push_back({t, stored(t)});
+                assign(t, value);
+                where.overrides.emplace_back(t.value_key, origin);
+            } catch (const NotApplicable& e) {
+                waiting.push_back(a);
+                for (const auto& error : e.errors()) not_applicable.push_back(error);
+            } catch (const ConfigException& e) {
+                progress = true;
+                for (const auto& error : e.errors()) diagnostics.add(error);
+            }
         }
+        pending = std::move(waiting);
     }
+    for (const auto& error : not_applicable) diagnostics.add(error);
     if (diagnostics.empty()) check(root, object, where, diagnostics);
     if (!diagnostics.empty()) {
         undo_all();

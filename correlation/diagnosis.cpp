@@ -158,6 +158,7 @@ DiagnosisResult diagnose(const bench::CampaignConfig& config, const std::filesys
         HypothesisOptions ho;
         ho.candidates = options.hypotheses;
         ho.held_out_levels = options.held_out_levels;
+        ho.confirm = options.confirm;
         ho.calibration = options.calibration;
         ho.calibration.simulate = options.hypothesis_simulate ? options.hypothesis_simulate
                                                               : candidate_simulation(config);
@@ -258,6 +259,19 @@ void write_diagnosis(const std::filesystem::path& out_dir, const DiagnosisResult
         }
         t << "]\n";
         t << "pairs_tried = " << (h.pairs_tried ? "true" : "false") << '\n';
+        if (h.confirmation) {
+            const auto& c = *h.confirmation;
+            t << "\n[hypotheses.confirmation]\n"
+              << "simulation = " << toml_string(c.simulation) << '\n'
+              << "confirmed = " << (c.confirmed ? "true" : "false") << '\n'
+              << "finding = " << toml_string(c.sentence) << '\n';
+            if (c.error.empty()) {
+                t << "misfit_fitted_levels = " << num(c.fit) << '\n'
+                  << "baseline_misfit_fitted_levels = " << num(c.baseline_fit) << '\n'
+                  << "misfit_held_out = " << num(c.held_out) << '\n'
+                  << "baseline_misfit_held_out = " << num(c.baseline_held_out) << '\n';
+            }
+        }
         for (const auto& c : h.ranking) {
             t << "\n[[candidates]]\n"
               << "name = " << toml_string(c.entry->name) << '\n'
@@ -355,6 +369,10 @@ void write_diagnosis(const std::filesystem::path& out_dir, const DiagnosisResult
         }
         if (h.held_out.empty()) md << "none (fewer than three levels)";
         md << ".\n";
+        if (h.confirmation) {
+            md << "\nThe winner, fitted on the prediction, simulated by the full model: "
+               << h.confirmation->sentence << ".\n";
+        }
         if (h.winner >= 0) md << "\nThe improved config: `improved.toml`.\n";
     }
     create_directories_for_writing(out_dir);

@@ -31,6 +31,7 @@ struct DiagnosisOptions {
     /// Catalogue physics fitted when a feature disagrees beyond the noise, at most; 0: none.
     int hypotheses = 3;
     int held_out_levels = 1;  ///< HypothesisOptions::held_out_levels
+    bool confirm = false;     ///< HypothesisOptions::confirm
     /// What they are fitted on; empty: candidate_simulation(config) (the fast prediction
     /// where the config allows it, else the coupled campaign).
     Simulation hypothesis_simulate;

@@ -71,6 +71,50 @@ Evaluation evaluate_on(const bench::CampaignConfig& config, const std::vector<Fr
     return evaluator.evaluate(values);
 }
 
+/// The winner and the baseline on the coupled campaign (their full models), the misfits split
+/// as the fits' were.
+Confirmation confirm_winner(const bench::CampaignConfig& config, const CandidateFit& winner,
+                            const Measurement& measurement,
+                            const std::vector<std::pair<std::string, double>>& held_out,
+                            CalibrationOptions calibration) {
+    Confirmation c;
+    std::vector<std::string> switched;
+    const bench::CampaignConfig baseline = full_model(config, &switched);
+    c.simulation = "the coupled campaign";
+    if (!switched.empty()) {
+        c.simulation += ", damper";
+        c.simulation += switched.size() > 1 ? "s " : " ";
+        for (std::size_t k = 0; k < switched.size(); ++k) {
+            c.simulation += (k ? ", " : "") + switched[k];
+        }
+        c.simulation += " as DEM bed";
+        if (switched.size() > 1) c.simulation += "s";
+    }
+    calibration.simulate = {};
+    // Their own cache: the coupled evaluations of other commands keep theirs.
+    if (!calibration.cache_dir.empty()) calibration.cache_dir /= "confirmation";
+    try {
+        const Evaluation before = evaluate_on(baseline, {}, {}, measurement, calibration);
+        std::tie(c.baseline_fit, c.baseline_held_out) = split_misfit(before, measurement, held_out);
+        const Evaluation after =
+            evaluate_on(full_model(winner.improved), {}, {}, measurement, calibration);
+        std::tie(c.fit, c.held_out) = split_misfit(after, measurement, held_out);
+    } catch (const std::exception& e) {
+        c.error = e.what();
+        c.sentence = "not confirmed on " + c.simulation + ": " + c.error;
+        return c;
+    }
+    c.confirmed = c.fit < c.baseline_fit && (held_out.empty() || c.held_out < c.baseline_held_out);
+    c.sentence = std::string(c.confirmed ? "confirmed" : "not confirmed") + " on " + c.simulation +
+                 ": misfit " + number(c.baseline_fit) + " -> " + number(c.fit) +
+                 " on the fitted levels";
+    if (!held_out.empty()) {
+        c.sentence +=
+            ", " + number(c.baseline_held_out) + " -> " + number(c.held_out) + " held out";
+    }
+    return c;
+}
+
 }  // namespace
 
 std::string CandidateFit::name() const {
@@ -83,6 +127,17 @@ std::string CandidateFit::left_out() const {
     std::string out;
     for (const auto* e : entries) out += (out.empty() ? "" : " and ") + e->left_out;
     return out;
+}
+
+bench::CampaignConfig full_model(const bench::CampaignConfig& config,
+                                 std::vector<std::string>* switched) {
+    bench::CampaignConfig full = config;
+    for (auto& d : full.campaign.dampers) {
+        if (d.model != bench::DamperSpec::Model::describing_function) continue;
+        d.model = bench::DamperSpec::Model::dem;
+        if (switched) switched->push_back(d.name);
+    }
+    return full;
 }
 
 Simulation candidate_simulation(const bench::CampaignConfig& config) {
@@ -214,6 +269,10 @@ HypothesisTest test_hypotheses(const bench::CampaignConfig& config, const Measur
         const bool holds = test.held_out.empty() || best.held_out < best.baseline_held_out;
         if (better && holds) test.winner = 0;
     }
+    if (test.winner == 0 && options.confirm && options.calibration.simulate) {
+        test.confirmation =
+            confirm_winner(config, test.fits.front(), measurement, test.held_out, calibration);
+    }
     if (test.winner == 0) {
         const auto& w = test.fits.front();
         std::string s = "the model left out " + w.left_out() + " (" + w.name() + "): ";
@@ -229,6 +288,7 @@ HypothesisTest test_hypotheses(const bench::CampaignConfig& config, const Measur
             s += ", " + number(w.baseline_held_out) + " -> " + number(w.held_out) + " held out";
         }
         s += ", BIC " + number(w.baseline_bic) + " -> " + number(w.bic);
+        if (test.confirmation) s += "; " + test.confirmation->sentence;
         test.sentence = s;
     } else if (test.fits.empty()) {
         test.sentence = "no physics of the catalogue has the signature of the mismatch";

@@ -4,6 +4,7 @@
 // the held-out levels.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,21 @@ struct HypothesisOptions {
     /// The fits' search, threads, cache and simulation (the fast prediction where the config
     /// allows it: candidate_simulation()).
     CalibrationOptions calibration;
+    /// When the fits ran on a simulation of their own (calibration.simulate), the winner and
+    /// the baseline are simulated again by the coupled campaign, describing-function dampers
+    /// as the DEM beds they were characterised from (confirm_winner()).
+    bool confirm = false;
+};
+
+/// The winner and the baseline simulated by the coupled campaign on the measured points:
+/// whether what the prediction found holds in the full model.
+struct Confirmation {
+    std::string simulation;  ///< in words: "the coupled campaign, dampers pd as DEM beds"
+    double baseline_fit = 0.0, fit = 0.0;            ///< ½ χ² of the fitted levels
+    double baseline_held_out = 0.0, held_out = 0.0;  ///< and of the held-out levels
+    bool confirmed = false;  ///< it lowers both as the prediction said (fit and held out)
+    std::string sentence;    ///< in words
+    std::string error;       ///< why it could not be run; empty when it was
 };
 
 /// One candidate, or a pair of them, switched on and fitted.
@@ -63,6 +79,8 @@ struct HypothesisTest {
     /// The first fit when it lowers the BIC by more than kBicStrong and the held-out misfit;
     /// -1 when none does.
     int winner = -1;
+    /// The winner confirmed on the coupled campaign (HypothesisOptions::confirm).
+    std::optional<Confirmation> confirmation;
     std::string sentence;  ///< in words
 };
 
@@ -75,11 +93,18 @@ inline constexpr double kBicStrong = 6.0;
 /// coupled campaign).
 Simulation candidate_simulation(const bench::CampaignConfig& config);
 
+/// `config` as the coupled campaign simulates it in full: every describing-function damper as
+/// the DEM bed its table was characterised from (its own particles, enclosure and contact
+/// keys), with the names of those switched.
+bench::CampaignConfig full_model(const bench::CampaignConfig& config,
+                                 std::vector<std::string>* switched = nullptr);
+
 /// Ranks the catalogue against `mismatches`, fits the best options.candidates with a positive
 /// score (each switched on in a copy of `config`, its keys freed within their intervals) on
 /// the measurement without its held-out levels, then every pair of those fitted when the best
 /// single one does not reach the noise (those no more complex than it when it does but frees
-/// two values or more), and compares them all. Throws what calibrate
+/// two values or more), and compares them all; with options.confirm, confirms the winner
+/// on the coupled campaign. Throws what calibrate
 /// throws for the baseline's evaluation; a candidate that cannot be fitted keeps its error.
 HypothesisTest test_hypotheses(const bench::CampaignConfig& config, const Measurement& measurement,
                                const std::vector<FeatureMismatch>& mismatches,

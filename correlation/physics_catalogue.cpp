@@ -58,6 +58,11 @@ bool lacks_rolling_resistance(const bench::ContactSpec& contact) {
            contact.particle_particle.rolling_friction == 0.0;
 }
 
+bool lacks_velocity_dependent_restitution(const bench::ContactSpec& contact) {
+    return contact.damping != dem::DampingLaw::viscoelastic &&
+           contact.damping != dem::DampingLaw::none;
+}
+
 bool lacks_static_friction(const bench::ContactSpec& contact) {
     return contact.tangential == dem::TangentialLaw::directional_coulomb;
 }
@@ -154,6 +159,30 @@ std::vector<CatalogueEntry> build_catalogue() {
          },
          [](const bench::CampaignConfig& c) { return !c.physics.microslip.on(); }});
     rows.push_back(
+        {"iwan-joint",
+         "slip in a joint or clamp, with its softening",
+         "A bolted joint or a clamp whose contact slips over more of its area at each level "
+         "(Iwan; Segalman's power-law slip density): damping that grows like the amplitude^(1 "
+         "+ chi) and the natural frequency falling with it, until the joint slides as a whole. "
+         "An Iwan element at the control point (physics.iwan_joint): the stuck joint's "
+         "stiffness and the displacement at which it slides as a whole, known within decades "
+         "and searched on a log scale; the exponent of the slip density held at the config's "
+         "(-0.5 by default, Segalman's lap joints).",
+         {{LevelFeature::damping_ratio, ScalingShape::power, +1},
+          {LevelFeature::natural_frequency, ScalingShape::power, -1}},
+         [](bench::CampaignConfig& c) {
+             // On from the start, barely (its other keys apply only then).
+             c.physics.iwan_joint.point = c.campaign.control_point;
+             c.physics.iwan_joint.stiffness_n_per_m = 0.01;
+             c.physics.iwan_joint.macroslip_displacement_m = 0.01;
+             // The exponent held: freed with the other two, the search settles in the valley
+             // of joints that never reach macroslip (docs/diagnosis.md).
+             return std::vector<std::string>{
+                 "physics.iwan_joint.stiffness_n_per_m=0.01:1e6:log",
+                 "physics.iwan_joint.macroslip_displacement_m=1e-6:1:log"};
+         },
+         [](const bench::CampaignConfig& c) { return !c.physics.iwan_joint.on(); }});
+    rows.push_back(
         {"geometric-stiffening",
          "the geometric stiffening of the driven mode",
          "Large deflections stiffen the mode (mid-plane stretching, curvature): its frequency "
@@ -237,6 +266,52 @@ std::vector<CatalogueEntry> build_catalogue() {
              [](bench::ContactSpec& c) { c.tangential = dem::TangentialLaw::coulomb_spring; },
              "tangential_stiffness_ratio=0.05:1:log"),
          has_dem_damper_lacking(lacks_static_friction)});
+    rows.push_back(
+        {"velocity-dependent-restitution",
+         "a restitution that falls with the impact speed",
+         "Real spheres are viscoelastic: their restitution falls with the impact speed (1 - e "
+         "grows like v^(1/5)), where the model's is one number, so the bed dissipates more at "
+         "the high levels than the model says and the slope of the damping curve changes. "
+         "Every DEM damper with a set restitution gets Hertz contacts with the viscoelastic "
+         "dashpot (Brilliantov et al. 1996), its dissipative constant searched from 1 ns to "
+         "10 us on a log scale. Fitted on the coupled campaign.",
+         {{LevelFeature::damping_ratio, ScalingShape::power, +1}},
+         switch_contacts(
+             lacks_velocity_dependent_restitution,
+             [](bench::ContactSpec& c) {
+                 c.normal = dem::NormalLaw::hertz;
+                 c.damping = dem::DampingLaw::viscoelastic;
+                 c.normal_stiffness.reset();
+                 c.particle_particle.dissipative_constant_s = 1e-9;
+             },
+             "dissipative_constant_s=1e-9:1e-5:log"),
+         has_dem_damper_lacking(lacks_velocity_dependent_restitution)});
+    rows.push_back(
+        {"gravity-tilt",
+         "the misalignment of the mount with gravity",
+         "A specimen mounted a few degrees off (a shaker or fixture not level): gravity gains "
+         "a component along the motion, the bed rests against one wall and its impacts become "
+         "asymmetric, with even harmonics in the response and the onset of particle motion "
+         "moved. Every arrangement's arrangements.NAME.gravity_tilt_deg freed within +-10 deg "
+         "(DEM dampers only: a describing function was characterised at its own gravity).",
+         {{LevelFeature::h2_ratio, ScalingShape::constant, +1}},
+         [](bench::CampaignConfig& c) {
+             std::vector<std::string> keys;
+             for (const auto& a : c.campaign.arrangements) {
+                 keys.push_back(config::join_path("arrangements", a.name) + ".gravity_tilt_deg");
+             }
+             return keys;
+         },
+         [](const bench::CampaignConfig& c) {
+             const auto& arrangements = c.campaign.arrangements;
+             const auto& dampers = c.campaign.dampers;
+             return std::any_of(dampers.begin(), dampers.end(),
+                                [](const bench::DamperSpec& d) {
+                                    return d.model == bench::DamperSpec::Model::dem;
+                                }) &&
+                    std::all_of(arrangements.begin(), arrangements.end(),
+                                [](const auto& a) { return a.gravity_tilt_deg == 0.0; });
+         }});
     return rows;
 }
 

@@ -37,6 +37,9 @@ ContactLaw make_contact_law(const ContactOptions& o) {
         case DampingLaw::hertz_dashpot:
             law.damping = HertzDashpot{};
             break;
+        case DampingLaw::viscoelastic:
+            law.damping = Viscoelastic{};
+            break;
         case DampingLaw::restitution:
             if (o.normal == NormalLaw::hooke) {
                 law.damping = LinearDashpot{};

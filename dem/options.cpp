@@ -22,6 +22,8 @@ Violations PairProperties::validate() const {
     }
     require_non_negative(out, "sliding_friction", sliding_friction, "sliding friction [-]");
     require_non_negative(out, "rolling_friction", rolling_friction, "rolling friction [-]");
+    require_non_negative(out, "dissipative_constant_s", dissipative_constant_s,
+                         "viscoelastic dissipative constant [s]");
     return out;
 }
 
@@ -79,6 +81,10 @@ Violations ContactOptions::validate() const {
     if (damping == DampingLaw::linear_dashpot && normal == NormalLaw::hertz) {
         out.push_back({"damping", "linear_dashpot", "incompatible with normal = hertz",
                        "damping piece (use hertz_dashpot or restitution)"});
+    }
+    if (damping == DampingLaw::viscoelastic && normal == NormalLaw::hooke) {
+        out.push_back({"damping", "viscoelastic", "incompatible with normal = hooke",
+                       "damping piece (viscoelastic needs normal = hertz)"});
     }
     if (damping == DampingLaw::hertz_dashpot && normal == NormalLaw::hooke) {
         out.push_back({"damping", "hertz_dashpot",

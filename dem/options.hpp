@@ -24,6 +24,9 @@ struct PairProperties {
     double restitution = 0.9;        ///< normal coefficient of restitution [-], in (0, 1]
     double sliding_friction = 0.6;   ///< Coulomb sliding friction coefficient [-] (paper 000)
     double rolling_friction = 0.01;  ///< rolling friction coefficient mu_r [-] (paper 000)
+    /// Viscoelastic damping only: the dissipative constant A of F_d = 3/2 A k sqrt(delta)
+    /// delta_dot (Brilliantov et al. 1996), whose restitution falls with the impact speed [s].
+    double dissipative_constant_s = 0.0;
     Violations validate() const;
 };
 
@@ -45,7 +48,7 @@ struct ParticleOptions {
 
 enum class NormalLaw { hooke, hertz };
 /// `restitution` picks the dashpot that matches the normal law.
-enum class DampingLaw { none, restitution, linear_dashpot, hertz_dashpot };
+enum class DampingLaw { none, restitution, linear_dashpot, hertz_dashpot, viscoelastic };
 enum class TangentialLaw { none, directional_coulomb, coulomb_spring };
 enum class RollingLaw { none, constant_torque };
 

@@ -119,6 +119,8 @@ Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
                         ? linear_zeta_from_restitution(props[k]->restitution)
                     : std::holds_alternative<HertzDashpot>(law_.damping)
                         ? hertz_alpha_from_restitution(props[k]->restitution)
+                    : std::holds_alternative<Viscoelastic>(law_.damping)
+                        ? props[k]->dissipative_constant_s
                         : 0.0;
     }
     has_history_ = std::holds_alternative<CoulombSpring>(law_.tangential);

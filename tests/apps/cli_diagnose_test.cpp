@@ -1,5 +1,6 @@
 // `shakerbench diagnose` from the command line: a linear campaign measured with more damping
-// than its config says is located, its own recording is not, bad input is named.
+// than its config says is located and the physics confirmed on the coupled campaign, its own
+// recording is not, bad input is named.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -41,6 +42,14 @@ TEST(CliDiagnose, MoreDampingThanTheConfigSaysIsLocatedAndItsOwnRecordingIsNot) 
     EXPECT_NE(toml.find("feature = \"damping ratio\"\nbeyond_noise = true\n"), std::string::npos)
         << toml;
     EXPECT_TRUE(fs::exists(out / "report.md"));
+    // The winner, fitted on the prediction, is run again by the coupled campaign: the
+    // recording's own simulation, so the misfits fall there too.
+    EXPECT_NE(toml.find("[hypotheses.confirmation]\nsimulation = \"the coupled campaign\"\n"
+                        "confirmed = true\n"),
+              std::string::npos)
+        << toml;
+    EXPECT_NE(file_text(out / "report.md").find("confirmed on the coupled campaign: misfit"),
+              std::string::npos);
 
     // The config that made the recording: nothing to report.
     const auto same = run("diagnose " + config + kLevels +

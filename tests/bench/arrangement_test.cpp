@@ -50,6 +50,19 @@ TEST(Arrangement, HorizontalPutsGravityAlongMinusYAndVerticalAlongMinusZ) {
     expect_near(arrangement_gravity(v), Eigen::Vector3d(0.0, 0.0, -kG), kRounding);
 }
 
+TEST(Arrangement, AGravityTiltTurnsGravityAboutTheBeamAxis) {
+    ArrangementSpec h;
+    h.gravity_tilt_deg = 3.0;
+    const double s = std::sin(3.0 * std::numbers::pi / 180.0);
+    const double c = std::cos(3.0 * std::numbers::pi / 180.0);
+    // Horizontal: g sin(3 deg) along -z, the motion.
+    expect_near(arrangement_gravity(h), Eigen::Vector3d(0.0, -kG * c, -kG * s), kRounding);
+    ArrangementSpec v;
+    v.oscillation = ArrangementSpec::Oscillation::vertical;
+    v.gravity_tilt_deg = 3.0;
+    expect_near(arrangement_gravity(v), Eigen::Vector3d(0.0, kG * s, -kG * c), kRounding);
+}
+
 TEST(Arrangement, TheDamperAxisMakesTheArrangementAngleWithTheMotion) {
     for (double angle : {0.0, 45.0, 90.0}) {
         const Eigen::Matrix3d r = mounting_rotation(arrangement(angle));

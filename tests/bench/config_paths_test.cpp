@@ -130,6 +130,28 @@ TEST(ConfigPaths, ApplyOverridesTakesKeyEqualsValueInOrder) {
     EXPECT_EQ(errors_of([&] { apply_overrides(config, {"campaign.seed"}); }).size(), 1u);
 }
 
+TEST(ConfigPaths, AKeySwitchedOnByALaterOverrideIsAcceptedInAnyOrder) {
+    // The joint's macroslip displacement applies only once its stiffness is set: given first,
+    // it waits for the stiffness instead of being refused.
+    const std::vector<std::string> joint{"physics.iwan_joint.macroslip_displacement_m=0.01",
+                                         "physics.iwan_joint.point=damper",
+                                         "physics.iwan_joint.stiffness_n_per_m=10"};
+    for (const auto& order : {joint, std::vector<std::string>(joint.rbegin(), joint.rend())}) {
+        CampaignConfig config = builtin();
+        apply_overrides(config, order);
+        EXPECT_EQ(config.physics.iwan_joint.macroslip_displacement_m, 0.01);
+        EXPECT_EQ(config.physics.iwan_joint.stiffness_n_per_m, 10.0);
+    }
+    // Nothing switches it on: still refused, naming why, and nothing changed.
+    CampaignConfig config = builtin();
+    const auto errors =
+        errors_of([&] { apply_overrides(config, {"physics.iwan_joint.exponent=-0.3"}); });
+    ASSERT_EQ(errors.size(), 1u);
+    EXPECT_NE(errors.front().find("physics.iwan_joint.exponent: does not apply"), std::string::npos)
+        << errors.front();
+    EXPECT_EQ(config.physics.iwan_joint.exponent, -0.5);
+}
+
 TEST(ConfigPaths, OverridesValidOnlyTogetherAreAcceptedInAnyOrderAndAllErrorsReported) {
     // A band moved above its old upper end: alone, the new lower end would pass the upper one.
     for (const std::vector<std::string>& order :

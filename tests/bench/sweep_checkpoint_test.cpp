@@ -86,6 +86,23 @@ TEST(SweepCheckpoint, ReadsBackExactlyWhatWasWritten) {
     EXPECT_EQ(serialize_checkpoint(back), text);
 }
 
+TEST(SweepCheckpoint, AnIwanJointsSlidersComeBackBitForBit) {
+    SweepCheckpoint c = sample_checkpoint();
+    AttachmentState joint;
+    joint.sliders = std::vector<double>{1.0 / 3.0, -0.0, -2.5e-7, 0.0};
+    c.state.attachments.push_back(joint);
+    c.state.loads.push_back(Eigen::Matrix<double, 6, 1>::Zero());
+    const std::string text = serialize_checkpoint(c);
+    const SweepCheckpoint back = parse_checkpoint(text, kFile);
+    ASSERT_EQ(back.state.attachments.size(), 3u);
+    ASSERT_TRUE(back.state.attachments[2].sliders.has_value());
+    EXPECT_FALSE(back.state.attachments[2].dem.has_value());
+    EXPECT_EQ(*back.state.attachments[2].sliders, *joint.sliders);
+    EXPECT_TRUE(std::signbit((*back.state.attachments[2].sliders)[1]));
+    EXPECT_FALSE(back.state.attachments[1].sliders.has_value());
+    EXPECT_EQ(serialize_checkpoint(back), text);
+}
+
 TEST(SweepCheckpoint, EndsWithTheChecksumOfEverythingBeforeIt) {
     const std::string text = serialize_checkpoint(sample_checkpoint());
     const std::string_view content = checkpoint_content(text);

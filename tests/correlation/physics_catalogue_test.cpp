@@ -7,6 +7,7 @@
 #include <cmath>
 #include <set>
 
+#include "bench/resolved_config.hpp"
 #include "correlation/free_parameters.hpp"
 
 namespace sb::correlation {
@@ -38,7 +39,7 @@ TEST(PhysicsCatalogue, EveryRowIsNamedOnceWithItsWordsAndASignature) {
         EXPECT_FALSE(row.signature.empty()) << row.name;
         EXPECT_TRUE(static_cast<bool>(row.switch_on)) << row.name;
     }
-    EXPECT_GE(names.size(), 8U);
+    EXPECT_GE(names.size(), 11U);
     EXPECT_THROW(catalogue_entry("no-such-physics"), std::invalid_argument);
 }
 
@@ -69,6 +70,37 @@ TEST(PhysicsCatalogue, StaticFrictionTurnsAStatelessFrictionIntoAHistorySpring) 
     EXPECT_EQ(free.front().lo, 0.05);
     EXPECT_EQ(free.front().hi, 1.0);
     EXPECT_FALSE(applies("static-friction", config));
+}
+
+TEST(PhysicsCatalogue, VelocityDependentRestitutionMakesTheContactsViscoelastic) {
+    EXPECT_FALSE(applies("velocity-dependent-restitution", h0({"dampers.pd.model=rigid"})));
+    auto config = h0();
+    ASSERT_TRUE(applies("velocity-dependent-restitution", config));
+    const auto free = switched("velocity-dependent-restitution", config);
+    const auto& contact = config.campaign.dampers.front().contact;
+    EXPECT_EQ(contact.normal, dem::NormalLaw::hertz);
+    EXPECT_EQ(contact.damping, dem::DampingLaw::viscoelastic);
+    ASSERT_EQ(free.size(), 1U);
+    EXPECT_EQ(free.front().path, "dampers.pd.contact.dissipative_constant_s");
+    EXPECT_TRUE(free.front().log_scale);
+    EXPECT_EQ(free.front().lo, 1e-9);
+    EXPECT_EQ(free.front().hi, 1e-5);
+    // The wall follows the particles' constant; the switched config is a valid one.
+    EXPECT_EQ(contact.particle_wall().dissipative_constant_s, 1e-9);
+    EXPECT_NO_THROW(bench::load_campaign_config_text(bench::resolved_config_toml(config), "on"));
+    EXPECT_FALSE(applies("velocity-dependent-restitution", config));
+}
+
+TEST(PhysicsCatalogue, GravityTiltFreesEveryArrangementsTiltForADemBed) {
+    EXPECT_FALSE(applies("gravity-tilt", h0({"dampers.pd.model=rigid"})));
+    EXPECT_FALSE(applies("gravity-tilt", h0({"arrangements.H-0.gravity_tilt_deg=2"})));
+    auto config = h0();
+    ASSERT_TRUE(applies("gravity-tilt", config));
+    const auto free = switched("gravity-tilt", config);
+    ASSERT_EQ(free.size(), config.campaign.arrangements.size());
+    EXPECT_EQ(free.front().path, "arrangements.H-0.gravity_tilt_deg");
+    EXPECT_EQ(free.front().lo, -10.0);
+    EXPECT_EQ(free.front().hi, 10.0);
 }
 
 TEST(PhysicsCatalogue, ClampComplianceHingesTheClampOnASpringAboutTheDrivenBendingAxis) {
