@@ -154,6 +154,27 @@ Simulation candidate_simulation(const bench::CampaignConfig& config) {
     };
 }
 
+bool is_strong(const CandidateFit& fit, bool held_out) {
+    return fit.error.empty() && fit.baseline_bic - fit.bic > kBicStrong &&
+           (!held_out || fit.held_out < fit.baseline_held_out);
+}
+
+int choose_winner(const std::vector<CandidateFit>& fits, bool held_out) {
+    // A lower BIC bought by fitting the fitted levels' details, which then extrapolates worse,
+    // loses to the fit that predicts (cross-validation on held-out levels, the most honest
+    // test of the research note on mismatch diagnosis).
+    double best_held_out = std::numeric_limits<double>::infinity();
+    for (const auto& f : fits) {
+        if (is_strong(f, held_out)) best_held_out = std::min(best_held_out, f.held_out);
+    }
+    for (std::size_t k = 0; k < fits.size(); ++k) {
+        if (!is_strong(fits[k], held_out)) continue;
+        if (held_out && fits[k].held_out > kHeldOutTolerance * best_held_out) continue;
+        return static_cast<int>(k);
+    }
+    return -1;
+}
+
 HypothesisTest test_hypotheses(const bench::CampaignConfig& config, const Measurement& measurement,
                                const std::vector<FeatureMismatch>& mismatches,
                                const HypothesisOptions& options) {
@@ -263,18 +284,14 @@ HypothesisTest test_hypotheses(const bench::CampaignConfig& config, const Measur
     }
     std::stable_sort(test.fits.begin(), test.fits.end(),
                      [](const CandidateFit& a, const CandidateFit& b) { return a.bic < b.bic; });
-    if (!test.fits.empty() && test.fits.front().error.empty()) {
-        const auto& best = test.fits.front();
-        const bool better = best.baseline_bic - best.bic > kBicStrong;
-        const bool holds = test.held_out.empty() || best.held_out < best.baseline_held_out;
-        if (better && holds) test.winner = 0;
+    const bool held_out = !test.held_out.empty();
+    test.winner = choose_winner(test.fits, held_out);
+    if (test.winner >= 0 && options.confirm && options.calibration.simulate) {
+        test.confirmation = confirm_winner(config, test.fits[static_cast<std::size_t>(test.winner)],
+                                           measurement, test.held_out, calibration);
     }
-    if (test.winner == 0 && options.confirm && options.calibration.simulate) {
-        test.confirmation =
-            confirm_winner(config, test.fits.front(), measurement, test.held_out, calibration);
-    }
-    if (test.winner == 0) {
-        const auto& w = test.fits.front();
+    if (test.winner >= 0) {
+        const auto& w = test.fits[static_cast<std::size_t>(test.winner)];
         std::string s = "the model left out " + w.left_out() + " (" + w.name() + "): ";
         for (std::size_t j = 0; j < w.free.size(); ++j) {
             s += (j ? ", " : "") + w.free[j].path + " = " + number(w.values[j]);
@@ -288,6 +305,14 @@ HypothesisTest test_hypotheses(const bench::CampaignConfig& config, const Measur
             s += ", " + number(w.baseline_held_out) + " -> " + number(w.held_out) + " held out";
         }
         s += ", BIC " + number(w.baseline_bic) + " -> " + number(w.bic);
+        if (test.winner > 0) {
+            const auto& lowest = test.fits.front();
+            s += " (" + lowest.name() + " had the lowest BIC, " + number(lowest.bic);
+            s += is_strong(lowest, held_out)
+                     ? ", but predicts the held-out levels " +
+                           number(lowest.held_out / w.held_out) + " times worse)"
+                     : ", but does not predict the held-out levels better than the baseline)";
+        }
         if (test.confirmation) s += "; " + test.confirmation->sentence;
         test.sentence = s;
     } else if (test.fits.empty()) {

@@ -76,8 +76,9 @@ struct HypothesisTest {
     /// Per arrangement, its options.held_out_levels highest levels when it has two more.
     std::vector<std::pair<std::string, double>> held_out;
     std::vector<CandidateFit> fits;  ///< the fitted candidates, lowest BIC first
-    /// The first fit when it lowers the BIC by more than kBicStrong and the held-out misfit;
-    /// -1 when none does.
+    /// The index of the winner in `fits`: of those that lower the BIC by more than kBicStrong
+    /// and the held-out misfit below the baseline's, the one of lowest BIC whose held-out
+    /// misfit is within kHeldOutTolerance times the best of them; -1 when none does.
     int winner = -1;
     /// The winner confirmed on the coupled campaign (HypothesisOptions::confirm).
     std::optional<Confirmation> confirmation;
@@ -86,6 +87,18 @@ struct HypothesisTest {
 
 /// A BIC lower by this much is strong evidence (Kass and Raftery 1995) [-].
 inline constexpr double kBicStrong = 6.0;
+/// A fit that predicts the held-out levels more than this many times worse than another
+/// strong fit is not the winner, whatever its BIC [-].
+inline constexpr double kHeldOutTolerance = 2.0;
+
+/// Strong evidence for a fit: its BIC lower than the baseline's by more than kBicStrong, it
+/// was fitted, and (`held_out`: levels were held out) it predicts them better than the
+/// baseline.
+bool is_strong(const CandidateFit& fit, bool held_out);
+
+/// The winner among `fits` (lowest BIC first): the strong fit of lowest BIC whose held-out
+/// misfit is within kHeldOutTolerance times the best strong fit's; -1 when none is strong.
+int choose_winner(const std::vector<CandidateFit>& fits, bool held_out);
 
 /// The simulation hypotheses are fitted on: the describing-function prediction of
 /// bench/prediction.hpp when every damper of `config` is rigid or a describing function and

@@ -189,9 +189,12 @@ TEST(JointedBeam, AmplitudeDependentDampingIsLocatedNamedAndPredictsTheHeldOutLe
     // Named and predictive on the two highest levels, held out of the fit.
     const auto& h = *d.hypotheses;
     ASSERT_EQ(h.held_out.size(), 2U);
-    ASSERT_EQ(h.winner, 0) << h.sentence;
-    EXPECT_EQ(h.fits.front().name(), "joint-microslip") << h.sentence;
-    EXPECT_LT(h.fits.front().held_out, h.fits.front().baseline_held_out) << h.sentence;
+    // The pair joint-microslip + iwan-joint fits the six levels better (lower BIC) but
+    // predicts the two held out several times worse: the power law alone is chosen.
+    ASSERT_GE(h.winner, 0) << h.sentence;
+    const auto& winner = h.fits[static_cast<std::size_t>(h.winner)];
+    EXPECT_EQ(winner.name(), "joint-microslip") << h.sentence;
+    EXPECT_LT(winner.held_out, winner.baseline_held_out) << h.sentence;
 }
 
 }  // namespace
