@@ -28,8 +28,8 @@ struct Target {
     std::string value_key;  ///< the path of the key holding the value (without a component)
 };
 
-[[noreturn]] void fail(std::string_view path, std::string constraint, std::string meaning,
-                       const Origin& origin) {
+ConfigError located_error(std::string_view path, std::string constraint, std::string meaning,
+                          const Origin& origin) {
     ConfigError e;
     e.file = origin.file;
     e.line = origin.line;
@@ -37,7 +37,12 @@ struct Target {
     e.key_path = std::string(path);
     e.constraint = std::move(constraint);
     e.meaning = std::move(meaning);
-    throw ConfigException({e});
+    return e;
+}
+
+[[noreturn]] void fail(std::string_view path, std::string constraint, std::string meaning,
+                       const Origin& origin) {
+    throw ConfigException({located_error(path, std::move(constraint), std::move(meaning), origin)});
 }
 
 const char* kSeeKeys = "see docs/config.md or `shakerbench keys CONFIG` for the keys";
@@ -106,14 +111,8 @@ Target resolve(const Table& root, void* object, std::string_view path, const Ori
         if (e == nullptr) fail(path, "unknown key", kSeeKeys, origin);
         t.path = join_path(t.path, part.name);
         if (!e->applies(t.object)) {
-            ConfigError error;
-            error.file = origin.file;
-            error.line = origin.line;
-            error.column = origin.column;
-            error.key_path = t.path;
-            error.constraint = "does not apply: " + e->decl.inactive_reason;
-            error.meaning = e->decl.meaning;
-            throw NotApplicable({error});
+            throw NotApplicable({located_error(t.path, "does not apply: " + e->decl.inactive_reason,
+                                               e->decl.meaning, origin)});
         }
         const bool last = i + 1 == parts.size();
         switch (e->decl.type) {

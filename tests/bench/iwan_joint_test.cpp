@@ -172,20 +172,8 @@ std::pair<double, double> circle_fit(const CampaignResult& result, double level_
 }
 
 TEST(IwanJoint, ThePredictionBalancesTheJointAsTheRunStepsItAndTheModeSoftens) {
-    // The paper-000 bench with its particles rigid (linear), 1 and 3 g on 25 frequencies over
-    // ±4 % of the mode; the controller holds the level within 0.2 % after 60 periods.
-    const auto bench = [] {
-        auto c = load_campaign_config_text(test::paper000_h0_with({}), "iwan.toml");
-        c.campaign.dampers.front().model = DamperSpec::Model::rigid;
-        c.campaign.levels_g = {1.0, 3.0};
-        c.campaign.frequencies.count = 25;
-        c.campaign.frequencies.low_ratio = 0.96;
-        c.campaign.frequencies.high_ratio = 1.04;
-        c.campaign.controller.tolerance = 0.002;
-        c.campaign.controller.transient_periods = 60;
-        c.campaign.controller.max_periods = 400;
-        return c;
-    };
+    // The linear paper-000 bench, 1 and 3 g on 25 frequencies over ±4 % of the mode.
+    const auto bench = [] { return test::linear_paper000_bench(25); };
     auto config = bench();
     // A joint at the tip whose last slider moves at 30 mm (F_S = 0.1 N): in microslip at both
     // levels (about 6 and 18 mm of tip motion).

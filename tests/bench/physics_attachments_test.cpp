@@ -21,24 +21,10 @@
 namespace sb::bench {
 namespace {
 
-using test::paper000_h0_with;
-
-/// The paper-000 bench with its particles as a rigid mass (a linear structure) at 1 and 3 g,
-/// nine frequencies over ±4 % of the mode, and air drag with C_D = `drag_coefficient`. Every
-/// point starts from the linear steady state without the drag, a transient that the 0.7 %
-/// damped mode sheds by e^-1 in about 25 periods: the controller skips 60 after each change
-/// and holds the level within 0.2 %, or the 5 % default would take the transient's amplitude
-/// for the steady one.
+/// The linear paper-000 bench on nine frequencies (test::linear_paper000_bench) with air drag
+/// of C_D = `drag_coefficient`.
 CampaignConfig linear_bench(double drag_coefficient, int stations = 24) {
-    auto config = load_campaign_config_text(paper000_h0_with({}), "air-drag.toml");
-    config.campaign.dampers.front().model = DamperSpec::Model::rigid;
-    config.campaign.levels_g = {1.0, 3.0};
-    config.campaign.frequencies.count = 9;
-    config.campaign.frequencies.low_ratio = 0.96;
-    config.campaign.frequencies.high_ratio = 1.04;
-    config.campaign.controller.tolerance = 0.002;
-    config.campaign.controller.transient_periods = 60;
-    config.campaign.controller.max_periods = 400;
+    auto config = test::linear_paper000_bench(9);
     config.physics.air_drag.drag_coefficient = drag_coefficient;
     config.physics.air_drag.stations = stations;
     return config;

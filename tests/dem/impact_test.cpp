@@ -27,20 +27,17 @@ constexpr double kSpeed = 0.5;
 
 double sphere_mass() { return 7800.0 * 4.0 / 3.0 * kPi * kRadius * kRadius * kRadius; }
 
-/// wall = true: one sphere onto the bottom; else two spheres head-on.
-ImpactResult run_impact(NormalLaw law, double e, bool wall, double dt) {
-    SolverOptions o = free_box_options(wall ? 1 : 2, law);
-    o.contact.particle_particle.restitution = e;
-    o.contact.particle_wall.restitution = e;
-    if (e >= 1.0) o.contact.damping = DampingLaw::none;
-    const ParticleSet p =
-        wall ? particles_at({{0, 0, kRadius + 1e-6}}, kRadius, {{0, 0, -kSpeed}})
-             : particles_at({{0, 0, 0.05}, {0, 0, 0.05 + 2 * kRadius + 1e-6}}, kRadius,
-                            {{0, 0, 0.5 * kSpeed}, {0, 0, -0.5 * kSpeed}});
+/// One impact at `speed` with the contact law of `o` (wall = true: one sphere onto the bottom;
+/// else two spheres head-on), stepped at dt until the contact ends.
+ImpactResult impact(const SolverOptions& o, bool wall, double speed, double dt,
+                    double gap_m = 1e-6) {
+    const ParticleSet p = wall ? particles_at({{0, 0, kRadius + gap_m}}, kRadius, {{0, 0, -speed}})
+                               : particles_at({{0, 0, 0.05}, {0, 0, 0.05 + 2 * kRadius + gap_m}},
+                                              kRadius, {{0, 0, 0.5 * speed}, {0, 0, -0.5 * speed}});
     Solver s(o, p);
     ImpactResult r;
     bool touched = false;
-    for (int k = 0; k < 1000000; ++k) {
+    for (int k = 0; k < 10000000; ++k) {
         s.step(dt);
         if (s.contact_count() > 0) {
             touched = true;
@@ -49,9 +46,19 @@ ImpactResult run_impact(NormalLaw law, double e, bool wall, double dt) {
             break;
         }
     }
+    EXPECT_TRUE(touched);
     const auto& v = s.particles().v;
-    r.restitution = wall ? v[0].z() / kSpeed : (v[1].z() - v[0].z()) / kSpeed;
+    r.restitution = wall ? v[0].z() / speed : (v[1].z() - v[0].z()) / speed;
     return r;
+}
+
+/// The impact at kSpeed with restitution e (e = 1: no damping) and the normal law `law`.
+ImpactResult run_impact(NormalLaw law, double e, bool wall, double dt) {
+    SolverOptions o = free_box_options(wall ? 1 : 2, law);
+    o.contact.particle_particle.restitution = e;
+    o.contact.particle_wall.restitution = e;
+    if (e >= 1.0) o.contact.damping = DampingLaw::none;
+    return impact(o, wall, kSpeed, dt);
 }
 
 struct Case {
@@ -130,25 +137,8 @@ TEST(ViscoelasticImpact, TheRestitutionFallsWithTheImpactSpeedAsTheFifthRoot) {
             o.contact.particle_particle.dissipative_constant_s = a_s;
             o.contact.particle_wall.dissipative_constant_s = a_s;
             const double v = speeds[i];
-            const ParticleSet p =
-                wall ? particles_at({{0, 0, kRadius + 1e-7}}, kRadius, {{0, 0, -v}})
-                     : particles_at({{0, 0, 0.05}, {0, 0, 0.05 + 2 * kRadius + 1e-7}}, kRadius,
-                                    {{0, 0, 0.5 * v}, {0, 0, -0.5 * v}});
-            Solver s(o, p);
             const double dt = hertz_contact_time(m_eff, k, v) / 2000.0;
-            bool touched = false;
-            for (int step = 0; step < 10000000; ++step) {
-                s.step(dt);
-                if (s.contact_count() > 0) {
-                    touched = true;
-                } else if (touched) {
-                    break;
-                }
-            }
-            ASSERT_TRUE(touched);
-            const auto& vel = s.particles().v;
-            const double e = wall ? vel[0].z() / v : (vel[1].z() - vel[0].z()) / v;
-            loss[i] = 1.0 - e;
+            loss[i] = 1.0 - impact(o, wall, v, dt, 1e-7).restitution;
             const double expected = viscoelastic_first_order_loss(a_s, k, m_eff, v);
             EXPECT_NEAR(loss[i], expected, 0.02 * expected) << (wall ? "wall " : "pair ") << v;
         }
