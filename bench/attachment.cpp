@@ -55,12 +55,14 @@ PointLoad DemDamper::weight() const {
     return {w, arm.cross(w)};
 }
 
-AttachmentState DemDamper::state() const { return {solver_->state(), std::nullopt, std::nullopt}; }
+AttachmentState DemDamper::state() const {
+    return {solver_->state(), std::nullopt, std::nullopt, std::nullopt};
+}
 
 AttachmentState DemDamper::state_at(const PointMotion& motion) {
     // The pose the next step would set anyway: the state is then relative to it.
     solver_->set_enclosure_state(enclosure(motion));
-    return {solver_->state(), std::nullopt, std::nullopt};
+    return {solver_->state(), std::nullopt, std::nullopt, std::nullopt};
 }
 
 namespace {

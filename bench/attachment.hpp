@@ -16,6 +16,7 @@
 #include "bench/attachment_types.hpp"
 #include "bench/describing_function.hpp"
 #include "bench/iwan_joint.hpp"
+#include "bench/shaker.hpp"
 #include "dem/solver.hpp"
 #include "dem/solver_state.hpp"
 
@@ -138,7 +139,7 @@ struct StatelessAttachment {
     [[nodiscard]] AttachmentState state() const { return {}; }
     [[nodiscard]] AttachmentState state_at(const PointMotion&) const { return {}; }
     void restore(const AttachmentState& s) const {
-        if (s.dem || s.describing || s.sliders) {
+        if (s.dem || s.describing || s.sliders || s.coil_current_a) {
             throw std::invalid_argument("a stateless attachment was given a state");
         }
     }
@@ -219,8 +220,9 @@ class CubicSpring : public StatelessAttachment {
     Eigen::Vector3d rest_position_m_;
 };
 
-using AttachmentModel = std::variant<DemDamper, RigidParticles, DescribingFunctionDamper,
-                                     AirDragStrip, MicroslipDashpot, CubicSpring, IwanJoint>;
+using AttachmentModel =
+    std::variant<DemDamper, RigidParticles, DescribingFunctionDamper, AirDragStrip,
+                 MicroslipDashpot, CubicSpring, IwanJoint, ShakerCoil>;
 
 /// A model at a named point.
 struct Attachment {

@@ -16,6 +16,9 @@ struct PointMotion {
     Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  ///< of the point's small rotation
     Eigen::Vector3d velocity_m_s = Eigen::Vector3d::Zero();
     Eigen::Vector3d angular_velocity_rad_s = Eigen::Vector3d::Zero();
+    /// The point's acceleration now, from the structure's last step (zero where a caller does
+    /// not know it): what a load applied at the step's end extrapolates its velocity with.
+    Eigen::Vector3d acceleration_m_s2 = Eigen::Vector3d::Zero();
 };
 
 /// Force [N] and moment [N m] at a point, structure frame.
@@ -36,6 +39,7 @@ struct AttachmentState {
     std::optional<dem::SolverState> dem;         ///< a DEM damper's particles, histories and clock
     std::optional<DescribingState> describing;   ///< a describing-function damper's amplitude
     std::optional<std::vector<double>> sliders;  ///< an Iwan joint's slider positions [m]
+    std::optional<double> coil_current_a;        ///< a shaker coil's back-EMF current [A]
 };
 
 }  // namespace sb::bench

@@ -55,7 +55,8 @@ void identify_campaign(const CampaignConfig& config,
     }
 }
 
-/// recording.toml's channels: the reference, then the control point, then the responses.
+/// recording.toml's channels: the reference, then the control point, then the responses (and
+/// the force into the structure when a shaker drives it, its voltage the reference).
 id::Recording campaign_recording(const CampaignConfig& config,
                                  const std::vector<std::string>& channel_points) {
     const auto& excitation = config.structure.excitation;
@@ -65,7 +66,11 @@ id::Recording campaign_recording(const CampaignConfig& config,
     const bool force = excitation.kind == structure::ExcitationSpec::Kind::force;
     rec.info.excitation = force ? "force" : "base";
     rec.info.description = config.description;
-    if (force) {
+    const bool shaker = force && config.physics.shaker.on();
+    if (shaker) {
+        rec.channels.push_back(
+            {"voltage", "voltage", "V", excitation.point, id::ChannelRole::reference});
+    } else if (force) {
         rec.channels.push_back(
             {"force", "force", "N", excitation.point, id::ChannelRole::reference});
     } else {
@@ -76,6 +81,10 @@ id::Recording campaign_recording(const CampaignConfig& config,
         rec.channels.push_back({"acc_" + channel_points[i], "acceleration", "m/s^2",
                                 channel_points[i],
                                 i == 0 ? id::ChannelRole::control : id::ChannelRole::response});
+    }
+    if (shaker) {
+        rec.channels.push_back(
+            {"force", "force", "N", excitation.point, id::ChannelRole::response});
     }
     return rec;
 }

@@ -207,6 +207,13 @@ structure::StructureSpec arrangement_structure(const CampaignConfig& config,
     structure::StructureSpec spec = config.structure;
     spec.beam = spec.beam.resolved();  // masses at named points placed there
     spec.gravity_m_s2 = arrangement_gravity(arrangement);
+    const ShakerSpec& shaker = config.physics.shaker;
+    if (shaker.on() && shaker.armature_mass_kg > 0.0) {
+        // The armature moves with the drive point (a rigid stinger): its mass is the
+        // structure's, exact in the modes rather than an explicit inertia load.
+        add_mass(spec, spec.excitation.point, "shaker armature", shaker.armature_mass_kg,
+                 Eigen::Vector3d::Zero());
+    }
     if (config.physics.air_drag.on() && spec.kind == structure::StructureSpec::Kind::beam) {
         for (auto& p : air_drag_points(spec.beam, config.physics.air_drag.stations)) {
             spec.beam.points.push_back(std::move(p));

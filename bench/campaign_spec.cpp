@@ -35,6 +35,7 @@ dem::PairProperties ContactSpec::particle_wall() const {
     wall.rolling_friction = wall_rolling_friction.value_or(particle_particle.rolling_friction);
     wall.dissipative_constant_s =
         wall_dissipative_constant_s.value_or(particle_particle.dissipative_constant_s);
+    wall.dashpot_n_s_per_m = wall_dashpot_n_s_per_m.value_or(particle_particle.dashpot_n_s_per_m);
     return wall;
 }
 

@@ -83,6 +83,7 @@ struct ContactSpec {
     std::optional<double> wall_sliding_friction;
     std::optional<double> wall_rolling_friction;
     std::optional<double> wall_dissipative_constant_s;
+    std::optional<double> wall_dashpot_n_s_per_m;
     dem::Material wall_material{};
     /// Automatic stiffness: largest overlap as a fraction of the diameter at the largest
     /// expected impact speed [-].

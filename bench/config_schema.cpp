@@ -436,6 +436,68 @@ std::shared_ptr<const config::Table> iwan_joint_table() {
     return t.build();
 }
 
+std::shared_ptr<const config::Table> shaker_table() {
+    TableBuilder<ShakerSpec> t(
+        "the electrodynamic shaker",
+        "The shaker between the amplifier and the drive point of a force-excited structure, "
+        "joined to it by a rigid stinger: the voltage V drives the coil (L di/dt + R i = V - "
+        "Bl v), the force factor Bl turns its current into force, the armature rides on its "
+        "suspension. On, the controller sets the amplifier's voltage, the recording's "
+        "reference channel `voltage` holds it and a response channel `force` the force into "
+        "the structure (a force transducer at the stinger's end). The back-EMF damps the "
+        "voltage-referenced FRF (about Bl^2 / R at the drive point), not the force-referenced "
+        "one.");
+    const auto on = [](const ShakerSpec& s) { return s.on(); };
+    const char* only = "only with force_factor_n_per_a > 0";
+    t.number(
+         "force_factor_n_per_a", [](ShakerSpec & s) -> auto& { return s.force_factor_n_per_a; },
+         "force factor Bl of the coil in the magnet's field; 0 leaves the shaker out (the drive "
+         "is an ideal force)")
+        .unit("N/A")
+        .bound(Bound::non_negative())
+        .calibrated_within(0.0, 1000.0);
+    t.number(
+         "coil_resistance_ohm", [](ShakerSpec & s) -> auto& { return s.coil_resistance_ohm; },
+         "resistance R of the coil with the amplifier's output resistance (a voltage-mode "
+         "amplifier: small)")
+        .unit("ohm")
+        .bound(Bound::positive())
+        .calibrated_within(0.01, 100.0)
+        .when(on, only);
+    t.number(
+         "coil_inductance_h", [](ShakerSpec & s) -> auto& { return s.coil_inductance_h; },
+         "inductance L of the coil: the current lags the voltage by atan(w L / R)")
+        .unit("H")
+        .bound(Bound::non_negative())
+        .calibrated_within(0.0, 0.1)
+        .when(on, only);
+    t.number(
+         "armature_mass_kg", [](ShakerSpec & s) -> auto& { return s.armature_mass_kg; },
+         "moving mass of the armature, its table and the stinger, added to the structure at "
+         "the drive point (a beam or lumped structure)")
+        .unit("kg")
+        .bound(Bound::non_negative())
+        .calibrated_within(0.0, 10.0)
+        .when(on, only);
+    t.number(
+         "suspension_stiffness_n_per_m",
+         [](ShakerSpec & s) -> auto& { return s.suspension_stiffness_n_per_m; },
+         "stiffness k_s of the armature's suspension (flexures)")
+        .unit("N/m")
+        .bound(Bound::non_negative())
+        .calibrated_within(0.0, 1e6)
+        .when(on, only);
+    t.number(
+         "suspension_damping_n_s_per_m",
+         [](ShakerSpec & s) -> auto& { return s.suspension_damping_n_s_per_m; },
+         "mechanical damping c_s of the armature's suspension")
+        .unit("N s/m")
+        .bound(Bound::non_negative())
+        .calibrated_within(0.0, 1000.0)
+        .when(on, only);
+    return t.build();
+}
+
 std::shared_ptr<const config::Table> physics_table() {
     TableBuilder<PhysicsSpec> t(
         "physics a model may leave out",
@@ -450,6 +512,8 @@ std::shared_ptr<const config::Table> physics_table() {
         cubic_spring_table());
     t.table(
         "iwan_joint", [](PhysicsSpec & p) -> auto& { return p.iwan_joint; }, iwan_joint_table());
+    t.table(
+        "shaker", [](PhysicsSpec & p) -> auto& { return p.shaker; }, shaker_table());
     return t.build();
 }
 
@@ -568,6 +632,21 @@ std::shared_ptr<const config::Table> build_campaign_schema() {
                     "physics.cubic_spring.point");
         check_point(c.physics.iwan_joint.on(), c.physics.iwan_joint.point,
                     "physics.iwan_joint.point");
+        const ShakerSpec& shaker = c.physics.shaker;
+        if (shaker.on() && c.structure.excitation.kind != structure::ExcitationSpec::Kind::force) {
+            out.push_back({"physics.shaker.force_factor_n_per_a",
+                           config::number_text(shaker.force_factor_n_per_a),
+                           "needs a force-excited structure (structure.excitation.kind = "
+                           "\"force\")",
+                           "the shaker drives the structure's excitation point through a stinger"});
+        }
+        if (shaker.on() && shaker.armature_mass_kg > 0.0 &&
+            c.structure.kind == structure::StructureSpec::Kind::matrix) {
+            out.push_back({"physics.shaker.armature_mass_kg",
+                           config::number_text(shaker.armature_mass_kg),
+                           "needs a beam or lumped structure",
+                           "an imported model takes the armature's mass in its mass matrix"});
+        }
         return out;
     });
     return root.build();

@@ -50,6 +50,20 @@ CoupledSpecimen::CoupledSpecimen(const structure::LinearModel& model,
     }
 }
 
+void CoupledSpecimen::drive_through(const ShakerSpec& shaker) {
+    if (excitation_.kind != structure::ExcitationSpec::Kind::force) {
+        throw std::invalid_argument("coupled specimen: a shaker drives a force excitation");
+    }
+    shaker_ = shaker;
+    names_.front() = "voltage";
+    names_.push_back("force");
+    for (std::size_t i = 0; i < attachments_.size(); ++i) {
+        if (std::holds_alternative<ShakerCoil>(attachments_[i].model)) {
+            coil_ = static_cast<int>(i);
+        }
+    }
+}
+
 void CoupledSpecimen::set_start_model(const structure::LinearModel& model,
                                       const structure::ModalBasis& basis) {
     if (model.dofs() != model_->dofs()) {
@@ -72,6 +86,7 @@ void CoupledSpecimen::set_frequency(double frequency_hz) {
     steps_per_period_ = std::max(1, blocks) * step_multiple_;
     dt_s_ = period_s / steps_per_period_;
     frequency_hz_ = frequency_hz;
+    if (shaker_) force_per_volt_ = blocked_force_per_volt(*shaker_, frequency_hz);
     for (auto& a : attachments_) bench::set_frequency(a, frequency_hz);
 
     SpecimenState kept;
@@ -114,6 +129,15 @@ double CoupledSpecimen::excitation_value(double amplitude, double time_s) const 
     return amplitude * std::sin(hz_to_rad_s(frequency_hz_) * time_s);
 }
 
+double CoupledSpecimen::drive_force(double amplitude, double time_s) const {
+    if (!shaker_) return excitation_value(amplitude, time_s);
+    // The voltage's share of the coil current in its steady state: |G| V sin(w t + arg G).
+    // Its transient after an amplitude change lasts the coil's L / R, microseconds to a
+    // millisecond against periods of tens of milliseconds, and is left out.
+    return std::abs(force_per_volt_) * amplitude *
+           std::sin(hz_to_rad_s(frequency_hz_) * time_s + std::arg(force_per_volt_));
+}
+
 void CoupledSpecimen::set_loads(double amplitude, double time_s) {
     // Every load at a point adds up: several attachments, and the shaker's force where an
     // attachment sits at the shaker point (set one by one, each would replace the other).
@@ -128,7 +152,7 @@ void CoupledSpecimen::set_loads(double amplitude, double time_s) {
     }
     const double value = excitation_value(amplitude, time_s);
     if (excitation_.kind == structure::ExcitationSpec::Kind::force) {
-        point_totals_[slot(shaker_index_)].head<3>() += value * direction_;
+        point_totals_[slot(shaker_index_)].head<3>() += drive_force(amplitude, time_s) * direction_;
     } else {
         const double w = hz_to_rad_s(frequency_hz_);
         const double phase = w * time_s;
@@ -157,8 +181,12 @@ void CoupledSpecimen::start_from_linear_steady_state(double amplitude, double ti
     // specimen's mass-normalised modes: q = Phi^T M x (both models share their free DOFs).
     structure::ReducedModalModel start(*start_model_, *start_basis_, dt_s_);
     if (excitation_.kind == structure::ExcitationSpec::Kind::force) {
-        start.set_harmonic_steady_state(excitation_.point, direction_, amplitude, frequency_hz_,
-                                        time_s);
+        // Through a shaker, the blocked force |G| V sin(w (t + arg G / w)).
+        const double w = hz_to_rad_s(frequency_hz_);
+        const double force = shaker_ ? std::abs(force_per_volt_) * amplitude : amplitude;
+        const double lead_s = shaker_ ? std::arg(force_per_volt_) / w : 0.0;
+        start.set_harmonic_steady_state(excitation_.point, direction_, force, frequency_hz_,
+                                        time_s + lead_s);
     } else {
         start.set_harmonic_base_steady_state(amplitude, frequency_hz_, time_s);
         structure_->set_harmonic_base_steady_state(amplitude, frequency_hz_, time_s);
@@ -211,6 +239,17 @@ void CoupledSpecimen::step(double amplitude, std::vector<double>& values) {
     for (std::size_t c = 0; c < channel_index_.size(); ++c) {
         values[c + 1] = structure_->acceleration(channel_index_[c]).dot(direction_);
     }
+    if (shaker_) {
+        // The transducer at the stinger's end: the coil's force less the suspension's and the
+        // armature's inertia, which stay on the shaker's side.
+        double force = drive_force(amplitude, structure_->time_s());
+        if (coil_ >= 0) {
+            force += loads_[static_cast<std::size_t>(coil_)].head<3>().dot(direction_);
+        }
+        force -=
+            shaker_->armature_mass_kg * structure_->acceleration(shaker_index_).dot(direction_);
+        values.back() = force;
+    }
 }
 
 PointMotion CoupledSpecimen::point_motion(std::size_t attachment) const {
@@ -221,6 +260,7 @@ PointMotion CoupledSpecimen::point_motion(std::size_t attachment) const {
     m.rotation = rotation_of(structure_->rotation(p));
     m.velocity_m_s = structure_->velocity(p);
     m.angular_velocity_rad_s = structure_->angular_velocity(p);
+    m.acceleration_m_s2 = structure_->acceleration(p);
     return m;
 }
 

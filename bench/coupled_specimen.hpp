@@ -5,11 +5,13 @@
 #include <Eigen/Core>
 #include <complex>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "bench/attachment.hpp"
 #include "bench/campaign_spec.hpp"
+#include "bench/physics_spec.hpp"
 #include "structure/linear_model.hpp"
 #include "structure/modal_analysis.hpp"
 #include "structure/reduced_modal_model.hpp"
@@ -40,8 +42,15 @@ class CoupledSpecimen {
                     std::vector<Attachment> attachments, std::vector<std::string> channel_points,
                     double dt_max_s, int step_multiple = 1);
 
-    /// Names of the recorded channels: the reference ("force" or "base_acc") first, then
-    /// "acc_<point>" for each channel point.
+    /// Drives the force excitation through an electrodynamic shaker (physics.shaker): the
+    /// amplitude becomes the amplifier's voltage, which the reference channel "voltage"
+    /// records, and a last channel "force" records the force into the structure. Its coil and
+    /// suspension are the ShakerCoil among the attachments, its armature's mass the model's.
+    /// Before set_frequency().
+    void drive_through(const ShakerSpec& shaker);
+
+    /// Names of the recorded channels: the reference ("force", "voltage" or "base_acc")
+    /// first, then "acc_<point>" for each channel point, then "force" when a shaker drives.
     [[nodiscard]] const std::vector<std::string>& channel_names() const { return names_; }
 
     /// Chooses the step for this frequency: the largest dt <= dt_max with a whole number of
@@ -98,7 +107,12 @@ class CoupledSpecimen {
     /// The loads at the end of the next step: every attachment's (loads_) and the excitation
     /// at `time_s`, summed per point.
     void set_loads(double amplitude, double time_s);
+    /// The drive at `time_s`: the reference channel's value (force, voltage or base
+    /// acceleration).
     [[nodiscard]] double excitation_value(double amplitude, double time_s) const;
+    /// The force the drive applies at the drive point (through a shaker: the blocked force of
+    /// the voltage, ShakerCoil adding what the motion takes back).
+    [[nodiscard]] double drive_force(double amplitude, double time_s) const;
 
     const structure::LinearModel* model_;
     const structure::ModalBasis* basis_;
@@ -121,6 +135,9 @@ class CoupledSpecimen {
     int steps_per_period_ = 0;
     std::unique_ptr<structure::ReducedModalModel> structure_;
     int shaker_index_ = -1;
+    std::optional<ShakerSpec> shaker_;
+    std::complex<double> force_per_volt_ = 1.0;  ///< blocked force per volt at this frequency
+    int coil_ = -1;                              ///< the ShakerCoil's attachment, if any
 };
 
 }  // namespace sb::bench

@@ -128,6 +128,18 @@ std::shared_ptr<const config::Table> particles_table() {
         .when([](const dem::ParticleOptions& p) { return p.size_distribution.empty(); },
               "not used with [[sizes]]");
     t.number(
+         "diameter_scatter", [](dem::ParticleOptions & p) -> auto& { return p.diameter_scatter; },
+         "relative standard deviation of the sphere diameters")
+        .unit("-")
+        .bound(Bound::closed(0.0, dem::kMaxDiameterScatter))
+        .calibrated_within(0.0, dem::kMaxDiameterScatter)
+        .doc(
+            "relative standard deviation s of the sphere diameters about their nominal value "
+            "(`diameter_m` or the class's: a manufacturing tolerance, wear), which moves the "
+            "packing and the clearance (Friend and Kinra 2000): each sphere nominal (1 + s u), u "
+            "uniform in [-sqrt 3, sqrt 3] from the filling's seed; 0: every sphere its nominal "
+            "size");
+    t.number(
          "density_kg_m3",
          [](dem::ParticleOptions & p) -> auto& { return p.material.density_kg_m3; },
          "particle density")
@@ -169,7 +181,8 @@ std::shared_ptr<const config::Table> contact_table() {
             "normal dashpot from the restitution coefficient: `restitution` picks the one that "
             "matches the normal law, or name it (`linear_dashpot` with hooke, `hertz_dashpot` "
             "with hertz), or `viscoelastic` (hertz): a dissipative constant instead of a "
-            "restitution, whose restitution falls with the impact speed");
+            "restitution, whose restitution falls with the impact speed, or `viscous`: a "
+            "dashpot coefficient given directly, as a drop-bounce test measures it");
     t.choice(
          "tangential", [](ContactSpec & c) -> auto& { return c.tangential; },
          dem::kTangentialLawNames, "tangential law")
@@ -274,6 +287,25 @@ std::shared_ptr<const config::Table> contact_table() {
         .follows("dissipative_constant_s")
         .when(viscoelastic, "only with damping = \"viscoelastic\"")
         .leaf("particle_wall.dissipative_constant_s");
+    const auto viscous = [](const ContactSpec& c) { return c.damping == dem::DampingLaw::viscous; };
+    t.number(
+         "dashpot_n_s_per_m",
+         [](ContactSpec & c) -> auto& { return c.particle_particle.dashpot_n_s_per_m; },
+         "particle-particle dashpot coefficient c of the viscous damping, F_d = c delta_dot")
+        .unit("N s/m")
+        .bound(Bound::non_negative())
+        .calibrated_within(0.0, 100.0)
+        .when(viscous, "only with damping = \"viscous\"")
+        .leaf("particle_particle.dashpot_n_s_per_m");
+    t.number(
+         "wall_dashpot_n_s_per_m",
+         [](ContactSpec & c) -> auto& { return c.wall_dashpot_n_s_per_m; },
+         "particle-wall dashpot coefficient c of the viscous damping")
+        .unit("N s/m")
+        .bound(Bound::non_negative())
+        .follows("dashpot_n_s_per_m")
+        .when(viscous, "only with damping = \"viscous\"")
+        .leaf("particle_wall.dashpot_n_s_per_m");
     t.number(
          "wall_youngs_modulus_pa",
          [](ContactSpec & c) -> auto& { return c.wall_material.youngs_modulus_pa; },

@@ -50,6 +50,13 @@ std::vector<Attachment> physics_attachments(const CampaignConfig& config,
                                  joint.macroslip_displacement_m, joint.exponent, joint.elements,
                                  prepared.model.point(joint.point).position_m)});
     }
+    const ShakerSpec& shaker = config.physics.shaker;
+    const auto& excitation = config.structure.excitation;
+    if (shaker.on() && excitation.kind == structure::ExcitationSpec::Kind::force) {
+        out.push_back({"shaker", excitation.point,
+                       ShakerCoil(excitation.direction, shaker,
+                                  prepared.model.point(excitation.point).position_m)});
+    }
     return out;
 }
 
@@ -66,6 +73,9 @@ DescribingFunction::Value physics_describing(const Attachment& attachment, doubl
     }
     if (const auto* joint = std::get_if<IwanJoint>(&attachment.model)) {
         return joint->describing(acceleration_m_s2, frequency_hz);
+    }
+    if (const auto* coil = std::get_if<ShakerCoil>(&attachment.model)) {
+        return coil->describing(acceleration_m_s2, frequency_hz);
     }
     throw std::invalid_argument("attachment " + attachment.name +
                                 " is not a catalogue physics with a describing function");

@@ -61,11 +61,30 @@ struct IwanJointSpec {
     [[nodiscard]] bool on() const { return stiffness_n_per_m > 0.0; }
 };
 
+/// The electrodynamic shaker between the amplifier and a force-excited structure's drive point
+/// (bench/shaker.hpp): a coil of resistance R and inductance L in the field of a magnet (force
+/// factor Bl), its armature of mass m_a on a suspension (k_s, c_s), joined to the structure by
+/// a rigid stinger. On, the drive is the amplifier's voltage: the recording's reference
+/// channel holds it, and a response channel `force` holds the force into the structure (a
+/// force transducer at the stinger's end). Voltage- and force-referenced FRFs then differ as
+/// they do on real rigs: the back-EMF damps the first, not the second.
+struct ShakerSpec {
+    double force_factor_n_per_a = 0.0;          ///< Bl; 0: off, the drive is an ideal force [N/A]
+    double coil_resistance_ohm = 1.0;           ///< R, with the amplifier's output resistance [ohm]
+    double coil_inductance_h = 0.0;             ///< L [H]
+    double armature_mass_kg = 0.0;              ///< m_a: armature, table and stinger [kg]
+    double suspension_stiffness_n_per_m = 0.0;  ///< k_s [N/m]
+    double suspension_damping_n_s_per_m = 0.0;  ///< c_s [N s/m]
+
+    [[nodiscard]] bool on() const { return force_factor_n_per_a > 0.0; }
+};
+
 struct PhysicsSpec {
     AirDragSpec air_drag;
     MicroslipSpec microslip;
     CubicSpringSpec cubic_spring;
     IwanJointSpec iwan_joint;
+    ShakerSpec shaker;
 };
 
 }  // namespace sb::bench

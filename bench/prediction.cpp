@@ -10,11 +10,13 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "bench/arrangement.hpp"
 #include "bench/physics_attachments.hpp"
 #include "bench/resolved_config.hpp"
+#include "bench/shaker.hpp"
 #include "config/dotted_path.hpp"
 #include "config/errors.hpp"
 #include "config/value.hpp"
@@ -102,11 +104,13 @@ struct Described {
 
 /// One predicted point.
 struct Solution {
-    double force_n = 0.0;              ///< drive amplitude F0 (force F0 sin(w t)) [N]
-    std::vector<Complex> channels;     ///< acceleration phasors per channel point [m/s^2]
-    std::vector<double> h2, h3;        ///< estimated harmonic ratios per channel point [-]
-    std::vector<double> amplitudes;    ///< |a1| per damper [m/s^2]
-    std::vector<double> drives_tried;  ///< F0 of every iteration [N]
+    double force_n = 0.0;                ///< drive amplitude F0 (force F0 sin(w t)) [N]
+    std::vector<Complex> channels;       ///< acceleration phasors per channel point [m/s^2]
+    std::vector<double> h2, h3;          ///< estimated harmonic ratios per channel point [-]
+    std::vector<double> amplitudes;      ///< |a1| per damper [m/s^2]
+    std::vector<Complex> accelerations;  ///< a1 phasor per damper point [m/s^2]
+    std::vector<Complex> masses;         ///< apparent mass per damper [kg]
+    std::vector<double> drives_tried;    ///< F0 of every iteration [N]
     int iterations = 0;
     bool converged = false;
     bool inside = true;
@@ -201,6 +205,10 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
     // The force phasor of F0 sin(w t) is -i F0: every response scales by it.
     const Complex drive(0.0, -s.force_n);
     s.amplitudes = amplitude;
+    for (std::size_t j = 0; j < nd; ++j) {
+        s.accelerations.push_back(a_p(static_cast<Eigen::Index>(j)) * drive);
+        s.masses.push_back(mass(static_cast<Eigen::Index>(j)));
+    }
     for (std::size_t c = 0; c < nc; ++c)
         s.channels.push_back(a_c(static_cast<Eigen::Index>(c)) * drive);
     // Harmonics: the dampers' force harmonics |Q_k| = h_k |Q1| (characterised) reach every
@@ -350,7 +358,9 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
                                      d.characterization_file.string() + " (characterised config " +
                                      table.config_hash + ")");
         }
+        std::optional<std::size_t> coil;  // the shaker's coil among them
         for (auto& a : physics_attachments(config, prepared)) {
+            if (std::holds_alternative<ShakerCoil>(a.model)) coil = dampers.size();
             auto shared = std::make_shared<const Attachment>(std::move(a));
             dampers.push_back({shared->point, [shared](double acceleration, double f) {
                                    return physics_describing(*shared, acceleration, f);
@@ -364,12 +374,17 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
             row.level_g = task.level_g;
             row.frequency_hz = f;
             row.status = status_of(s);
-            id::ChannelValue force;
-            force.rms = s.force_n / std::sqrt(2.0);
-            force.amplitude = Complex(0.0, -s.force_n);
-            force.h2_ratio = 0.0;  // the drive is a pure sine
-            force.h3_ratio = 0.0;
-            row.values.push_back(force);
+            // The drive: the force F0 sin(w t), phasor -i F0, or through a shaker the voltage
+            // whose blocked force it is, V = -i F0 / G.
+            const Complex blocked(0.0, -s.force_n);
+            const ShakerSpec& shaker = config.physics.shaker;
+            const Complex per_volt = shaker.on() ? blocked_force_per_volt(shaker, f) : 1.0;
+            id::ChannelValue drive;
+            drive.amplitude = blocked / per_volt;
+            drive.rms = std::abs(drive.amplitude) / std::sqrt(2.0);
+            drive.h2_ratio = 0.0;  // the drive is a pure sine
+            drive.h3_ratio = 0.0;
+            row.values.push_back(drive);
             for (std::size_t c = 0; c < s.channels.size(); ++c) {
                 id::ChannelValue v;
                 // The fundamental only: the RMS the harmonics would add is below
@@ -380,13 +395,27 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
                 v.h3_ratio = s.h3[c];
                 row.values.push_back(v);
             }
+            if (shaker.on()) {
+                // The transducer: the blocked force less what the coil, the suspension and
+                // the armature's inertia take back at the drive point.
+                const Complex a_drive = coil ? s.accelerations[*coil]
+                                             : Complex(0.0);  // (a shaker always brings its coil)
+                const Complex coil_mass = coil ? s.masses[*coil] : Complex(0.0);
+                id::ChannelValue transducer;
+                transducer.amplitude = blocked - (coil_mass + shaker.armature_mass_kg) * a_drive;
+                transducer.rms = std::abs(transducer.amplitude) / std::sqrt(2.0);
+                row.values.push_back(transducer);
+            }
             sweep.rows.push_back(row);
             std::string tried;
-            for (double a : s.drives_tried) tried += (tried.empty() ? "" : ";") + number_text(a);
-            sweep.control_log.push_back(
-                prepared.arrangement.name + "," + number_text(task.level_g) + "," + number_text(f) +
-                "," + row.status + ",0," + std::to_string(s.iterations) + "," +
-                number_text(s.force_n) + "," + number_text(row.values[1].rms) + "," + tried + ",");
+            for (double a : s.drives_tried) {
+                tried += (tried.empty() ? "" : ";") + number_text(a / std::abs(per_volt));
+            }
+            sweep.control_log.push_back(prepared.arrangement.name + "," +
+                                        number_text(task.level_g) + "," + number_text(f) + "," +
+                                        row.status + ",0," + std::to_string(s.iterations) + "," +
+                                        number_text(std::abs(row.values[0].amplitude)) + "," +
+                                        number_text(row.values[1].rms) + "," + tried + ",");
         }
         result.sweeps.push_back(std::move(sweep));
     }

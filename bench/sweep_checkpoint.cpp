@@ -385,10 +385,11 @@ std::string serialize_checkpoint(const SweepCheckpoint& c) {
     for (std::size_t d = 0; d < c.state.attachments.size(); ++d) {
         const auto& a = c.state.attachments[d];
         w.key("attachment")
-            .text(a.dem          ? "dem"
-                  : a.describing ? "describing"
-                  : a.sliders    ? "sliders"
-                                 : "none")
+            .text(a.dem              ? "dem"
+                  : a.describing     ? "describing"
+                  : a.sliders        ? "sliders"
+                  : a.coil_current_a ? "coil"
+                                     : "none")
             .end();
         w.key("load");
         for (int k = 0; k < 6; ++k) w.num(c.state.loads[d][k]);
@@ -403,6 +404,7 @@ std::string serialize_checkpoint(const SweepCheckpoint& c) {
         if (a.sliders)
             write_vector(w, "sliders",
                          Eigen::Map<const Eigen::VectorXd>(a.sliders->data(), a.sliders->size()));
+        if (a.coil_current_a) w.key("coil").num(*a.coil_current_a).end();
     }
     write_rows(w, c.rows);
     write_lines(w, "log", "l", c.control_log);
@@ -501,7 +503,8 @@ SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& fil
     for (long long d = 0; d < attachments; ++d) {
         r.line("attachment");
         const std::string kind = r.text();
-        if (kind != "dem" && kind != "describing" && kind != "sliders" && kind != "none") {
+        if (kind != "dem" && kind != "describing" && kind != "sliders" && kind != "coil" &&
+            kind != "none") {
             r.fail("unknown attachment '" + kind + "'");
         }
         auto load = r.line("load");
@@ -521,6 +524,11 @@ SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& fil
         if (kind == "sliders") {
             const Eigen::VectorXd sliders = read_vector(r, "sliders");
             a.sliders = std::vector<double>(sliders.data(), sliders.data() + sliders.size());
+        }
+        if (kind == "coil") {
+            auto words = r.line("coil");
+            a.coil_current_a = r.num(words);
+            r.end(words);
         }
         c.state.attachments.push_back(std::move(a));
     }

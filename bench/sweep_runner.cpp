@@ -307,12 +307,20 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
                              std::move(attachments), channel_points, dt_max,
                              std::max(series_samples, 1));
     specimen.set_start_model(prepared.estimate_model, prepared.estimate_basis);
+    const ShakerSpec& shaker = config.physics.shaker;
+    if (shaker.on()) specimen.drive_through(shaker);
+    // The force per unit drive: 1, or through a shaker its blocked force per volt (the linear
+    // models below know forces; the back-EMF they lack is what the driven mode learns).
+    const auto force_per_drive = [&](double f) {
+        return shaker.on() ? blocked_force_per_volt(shaker, f) : std::complex<double>(1.0);
+    };
     SpecimenPlant plant(specimen, series_samples, campaign.scale_response_on_update, energy);
     const double target_rms = g_to_m_s2(task.level_g);
     const auto linear_gain = [&](double f) {
         return linear_response_per_unit_input(prepared.estimate_model, prepared.estimate_basis,
                                               prepared.structure.excitation, campaign.control_point,
-                                              f);
+                                              f) *
+               std::abs(force_per_drive(f));
     };
     const Eigen::Vector3d direction = prepared.structure.excitation.direction.normalized();
     const DrivenMode driven_mode(prepared.estimate_model, prepared.estimate_basis,
@@ -367,11 +375,15 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
                 const double previous_f = frequencies[static_cast<std::size_t>(i - 1)];
                 start *= linear_gain(previous_f) / linear_gain(f);
                 const auto& previous = checkpoint.rows.back();
-                const std::complex<double> measured =
-                    previous.values[1].amplitude / previous.values[0].amplitude;
+                // Per unit force: the driven mode is the structure's.
+                const std::complex<double> measured = previous.values[1].amplitude /
+                                                      previous.values[0].amplitude /
+                                                      force_per_drive(previous_f);
                 const auto predicted = driven_mode.predict(measured, previous_f, f);
                 if (predicted) {
-                    start = checkpoint.next_amplitude * std::abs(measured) / std::abs(*predicted);
+                    start = checkpoint.next_amplitude * std::abs(measured) /
+                            std::abs(*predicted * force_per_drive(f)) *
+                            std::abs(force_per_drive(previous_f));
                 }
                 using Start = CampaignSpec::PointStart;
                 if (campaign.point_start == Start::linear_steady_state) {

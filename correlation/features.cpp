@@ -140,6 +140,9 @@ Measurement read_measurement(const fs::path& directory, const StatedUncertainty&
     if (!recording.points.empty()) {
         levels = identification::identify_recording(recording);
         if (!levels.empty()) m.response_channel = levels.front().channel;
+        for (const auto& c : recording.channels) {
+            if (c.role == identification::ChannelRole::reference) m.reference_quantity = c.quantity;
+        }
     }
     std::vector<DampingRow> damping = recording.damping;
     if (damping.empty()) damping = identification::damping_rows(levels);

@@ -53,7 +53,10 @@ struct Measurement {
     /// What the directory holds: "damping.csv", "points.csv" or "time histories".
     std::string depth;
     std::string response_channel;  ///< the FRF's response channel (empty: damping.csv only)
-    std::string damping_method;    ///< the estimator compared: circle-fit, else half-power
+    /// The quantity of the FRF's reference channel: "force", "voltage" (a shaker's drive),
+    /// "acceleration" (a base's); empty with damping.csv only.
+    std::string reference_quantity;
+    std::string damping_method;  ///< the estimator compared: circle-fit, else half-power
     std::vector<Feature> features;
     /// The arrangements, levels and frequencies a simulation must give: the measured ones
     /// (without points, each level on the config's grid).

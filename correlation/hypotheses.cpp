@@ -179,7 +179,7 @@ HypothesisTest test_hypotheses(const bench::CampaignConfig& config, const Measur
                                const std::vector<FeatureMismatch>& mismatches,
                                const HypothesisOptions& options) {
     HypothesisTest test;
-    test.ranking = rank_candidates(config, mismatches);
+    test.ranking = rank_candidates(config, mismatches, measurement.reference_quantity);
     std::vector<std::string> arrangements;
     for (const auto& s : measurement.selection.sweeps) {
         if (std::find(arrangements.begin(), arrangements.end(), s.arrangement) ==

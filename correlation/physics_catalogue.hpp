@@ -36,7 +36,15 @@ struct CatalogueEntry {
     /// Whether `config` can take it (a beam for the drag, ...) and is not already modelling
     /// it; empty: always.
     std::function<bool(const bench::CampaignConfig& config)> applies;
+    /// The quantity of a measured reference the row turns the model's drive into ("voltage":
+    /// a shaker); empty: it leaves the drive as it is. Such a row applies only where the
+    /// measurement's reference is that quantity and the model's is not.
+    std::string makes_reference;
 };
+
+/// The quantity of the reference channel `config` records: "force", "voltage" (through a
+/// shaker) or "acceleration" (base excitation).
+std::string model_reference_quantity(const bench::CampaignConfig& config);
 
 /// Every row, in a fixed order (ties in a ranking keep it).
 const std::vector<CatalogueEntry>& physics_catalogue();
@@ -56,7 +64,11 @@ struct CandidateScore {
 };
 
 /// The rows that apply to `config`, best score first (the catalogue's order among equals).
+/// `measured_reference`: the quantity of the measurement's reference channel (empty: unknown,
+/// taken as the model's). Where it is not the model's, a row that makes it scores +4 and
+/// every other row -4: no physics of the structure turns newtons into volts.
 std::vector<CandidateScore> rank_candidates(const bench::CampaignConfig& config,
-                                            const std::vector<FeatureMismatch>& mismatches);
+                                            const std::vector<FeatureMismatch>& mismatches,
+                                            const std::string& measured_reference = {});
 
 }  // namespace sb::correlation

@@ -40,6 +40,9 @@ ContactLaw make_contact_law(const ContactOptions& o) {
         case DampingLaw::viscoelastic:
             law.damping = Viscoelastic{};
             break;
+        case DampingLaw::viscous:
+            law.damping = ViscousDashpot{};
+            break;
         case DampingLaw::restitution:
             if (o.normal == NormalLaw::hooke) {
                 law.damping = LinearDashpot{};

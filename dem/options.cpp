@@ -2,6 +2,7 @@
 #include "dem/options.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace sb::dem {
@@ -24,6 +25,8 @@ Violations PairProperties::validate() const {
     require_non_negative(out, "rolling_friction", rolling_friction, "rolling friction [-]");
     require_non_negative(out, "dissipative_constant_s", dissipative_constant_s,
                          "viscoelastic dissipative constant [s]");
+    require_non_negative(out, "dashpot_n_s_per_m", dashpot_n_s_per_m,
+                         "viscous dashpot coefficient [N s/m]");
     return out;
 }
 
@@ -49,6 +52,8 @@ Violations ParticleOptions::validate() const {
                            "number fractions of the size classes"});
         }
     }
+    require_in_range(out, "diameter_scatter", diameter_scatter, 0.0, kMaxDiameterScatter,
+                     "relative standard deviation of the diameters [-]");
     append_prefixed(out, "material", material.validate());
     return out;
 }
@@ -56,7 +61,8 @@ Violations ParticleOptions::validate() const {
 double ParticleOptions::largest_diameter_m() const {
     double d = size_distribution.empty() ? diameter_m : 0.0;
     for (const auto& s : size_distribution) d = std::max(d, s.diameter_m);
-    return d;
+    // u in make_radii reaches sqrt(3): the bound of a uniform law of unit variance.
+    return d * (1.0 + std::sqrt(3.0) * diameter_scatter);
 }
 
 namespace {

@@ -27,6 +27,8 @@ struct PairProperties {
     /// Viscoelastic damping only: the dissipative constant A of F_d = 3/2 A k sqrt(delta)
     /// delta_dot (Brilliantov et al. 1996), whose restitution falls with the impact speed [s].
     double dissipative_constant_s = 0.0;
+    /// Viscous damping only: the dashpot coefficient c of F_d = c delta_dot [N s/m].
+    double dashpot_n_s_per_m = 0.0;
     Violations validate() const;
 };
 
@@ -36,19 +38,28 @@ struct SizeFraction {
     double number_fraction = 1.0;  ///< share of the particle count [-]
 };
 
+/// Largest relative standard deviation of the diameters about their nominal value [-].
+inline constexpr double kMaxDiameterScatter = 0.2;
+
 /// The particle population.
 struct ParticleOptions {
     int count = 120;                                ///< number of spheres
     double diameter_m = 3e-3;                       ///< diameter when monodisperse [m]
     std::vector<SizeFraction> size_distribution{};  ///< if non-empty, replaces diameter_m
-    Material material{};                            ///< particle material
+    /// Relative standard deviation s of every sphere's diameter about its nominal value (a
+    /// manufacturing tolerance, wear) [-]: nominal (1 + s u), u uniform in [-sqrt 3, sqrt 3]
+    /// (make_radii); 0 = every sphere its nominal size.
+    double diameter_scatter = 0.0;
+    Material material{};  ///< particle material
     Violations validate() const;
+    /// The largest diameter a sphere can have, scatter included: the largest nominal one
+    /// times 1 + sqrt(3) s [m].
     double largest_diameter_m() const;
 };
 
 enum class NormalLaw { hooke, hertz };
 /// `restitution` picks the dashpot that matches the normal law.
-enum class DampingLaw { none, restitution, linear_dashpot, hertz_dashpot, viscoelastic };
+enum class DampingLaw { none, restitution, linear_dashpot, hertz_dashpot, viscoelastic, viscous };
 enum class TangentialLaw { none, directional_coulomb, coulomb_spring };
 enum class RollingLaw { none, constant_torque };
 

@@ -11,7 +11,9 @@
 namespace sb::dem {
 
 /// Radii for options.count particles: monodisperse, or the size classes by number fraction
-/// (largest remainder rounding, classes interleaved by a seeded shuffle) [m].
+/// (largest remainder rounding, classes interleaved by a seeded shuffle), each then scattered
+/// by options.diameter_scatter (nominal (1 + s u), u uniform in [-sqrt 3, sqrt 3)); the same
+/// radii for a seed [m].
 std::vector<double> make_radii(const ParticleOptions& options, std::uint64_t seed = 1);
 
 /// Random non-overlapping insertion in the enclosure frame (fixed seed, rejection sampling
@@ -152,12 +154,12 @@ struct ExcitationContact {
     std::string log;
 };
 
-/// The given stiffness, or auto_stiffness() sized for the largest spheres at the largest
-/// impact speed of the excitation (peak acceleration a, frequency f, free flight across the
-/// enclosure height); the time step is time_step_fraction times the particle-particle contact
-/// time of the largest spheres (m* = m/2): Hooke damped with `restitution`, Hertz at the
-/// impact speed auto_stiffness() estimates. Throws std::invalid_argument (auto_stiffness()'s
-/// checks) for inputs it cannot size.
+/// The given stiffness, or auto_stiffness() sized for the largest spheres (largest_diameter_m(),
+/// the diameter scatter included) at the largest impact speed of the excitation (peak acceleration
+/// a, frequency f, free flight across the enclosure height); the time step is time_step_fraction
+/// times the particle-particle contact time of the largest spheres (m* = m/2): Hooke damped with
+/// `restitution`, Hertz at the impact speed auto_stiffness() estimates. Throws
+/// std::invalid_argument (auto_stiffness()'s checks) for inputs it cannot size.
 ExcitationContact choose_contact(const ParticleOptions& particles,
                                  const EnclosureOptions& enclosure, NormalLaw law,
                                  double restitution, std::optional<double> given_stiffness,

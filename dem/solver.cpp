@@ -115,13 +115,14 @@ Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
         if (k == 1 && c.normal == NormalLaw::hooke && c.wall_normal_stiffness > 0.0) {
             p.k_n = c.wall_normal_stiffness;
         }
-        p.damping = std::holds_alternative<LinearDashpot>(law_.damping)
-                        ? linear_zeta_from_restitution(props[k]->restitution)
-                    : std::holds_alternative<HertzDashpot>(law_.damping)
-                        ? hertz_alpha_from_restitution(props[k]->restitution)
-                    : std::holds_alternative<Viscoelastic>(law_.damping)
-                        ? props[k]->dissipative_constant_s
-                        : 0.0;
+        p.damping =
+            std::holds_alternative<LinearDashpot>(law_.damping)
+                ? linear_zeta_from_restitution(props[k]->restitution)
+            : std::holds_alternative<HertzDashpot>(law_.damping)
+                ? hertz_alpha_from_restitution(props[k]->restitution)
+            : std::holds_alternative<Viscoelastic>(law_.damping) ? props[k]->dissipative_constant_s
+            : std::holds_alternative<ViscousDashpot>(law_.damping) ? props[k]->dashpot_n_s_per_m
+                                                                   : 0.0;
     }
     has_history_ = std::holds_alternative<CoulombSpring>(law_.tangential);
 

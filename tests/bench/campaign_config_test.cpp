@@ -135,6 +135,31 @@ TEST(CampaignConfig, ADamperFillsByRandomInsertionUnlessToldToPour) {
     EXPECT_EQ(poured.campaign.dampers[0].fill, DamperSpec::Fill::pour);
 }
 
+TEST(CampaignConfig, TheDiameterScatterReadsWithinItsBoundAndIsLocatedOutside) {
+    const std::string builtin(builtin_config_text());
+    const auto scattered = [&](const std::string& value) {
+        return replaced(builtin, "diameter_m = 0.003",
+                        "diameter_m = 0.003\ndiameter_scatter = " + value);
+    };
+    EXPECT_EQ(load_campaign_config_text(builtin, "plain.toml")
+                  .campaign.dampers[0]
+                  .particles.diameter_scatter,
+              0.0);
+    EXPECT_EQ(load_campaign_config_text(scattered("0.05"), "scatter.toml")
+                  .campaign.dampers[0]
+                  .particles.diameter_scatter,
+              0.05);
+    for (const std::string value : {"-0.1", "0.3"}) {
+        const auto errors = errors_of(scattered(value));
+        ASSERT_EQ(errors.size(), 1u) << value;
+        EXPECT_EQ(errors[0].rfind("bad.toml:40:20: dampers.pd.particles.diameter_scatter = " +
+                                      value + ": must be in [0, 0.2]",
+                                  0),
+                  0u)
+            << errors[0];
+    }
+}
+
 TEST(CampaignConfig, AnUnknownFillMethodIsReportedWithItsChoices) {
     const auto errors =
         errors_of(std::string(builtin_config_text()) + "\n[dampers.pd.settle]\nfill = \"shake\"\n");

@@ -77,6 +77,24 @@ TEST(ConfigPaths, WallFrictionFollowsAParticleFrictionChangedAfterLoading) {
     EXPECT_EQ(config.campaign.dampers.front().contact.particle_wall().sliding_friction, 0.2);
 }
 
+TEST(ConfigPaths, TheDiameterScatterIsAddressedByItsDottedPathWithinItsBound) {
+    CampaignConfig config = builtin();
+    const std::string path = "dampers.pd.particles.diameter_scatter";
+    EXPECT_EQ(std::get<double>(get_value(config, path)), 0.0);
+    apply_overrides(config, {path + "=0.05"});
+    EXPECT_EQ(config.campaign.dampers.front().particles.diameter_scatter, 0.05);
+    set_value_text(config, path, "0.2", "--set");
+    EXPECT_EQ(std::get<double>(get_value(config, path)), 0.2);
+    for (const std::string value : {"-0.1", "0.3"}) {
+        EXPECT_EQ(errors_of([&] { set_value_text(config, path, value, "--set"); }),
+                  (std::vector<std::string>{
+                      "--set: " + path + " = " + value +
+                      ": must be in [0, 0.2] (relative standard deviation of the sphere "
+                      "diameters [-])"}));
+        EXPECT_EQ(config.campaign.dampers.front().particles.diameter_scatter, 0.2);
+    }
+}
+
 TEST(ConfigPaths, AMassGivenByItsPointMovesWithThePoint) {
     CampaignConfig config = builtin();
     set_value_text(config, "structure.beam.points.acc4", "0.5", "--set");
@@ -241,6 +259,7 @@ TEST(ConfigPaths, EveryViolationOfADamperNamesADeclaredKey) {
     d.particles.count = 0;
     d.particles.material = {-1.0, -1.0, 0.7};
     d.particles.size_distribution = {{-1.0, 0.2}, {3e-3, -0.1}};
+    d.particles.diameter_scatter = 0.3;
     d.contact.normal_stiffness = -1.0;
     d.contact.particle_particle = {1.5, -1.0, -1.0};
     d.contact.wall_restitution = 0.0;

@@ -103,6 +103,22 @@ TEST(SweepCheckpoint, AnIwanJointsSlidersComeBackBitForBit) {
     EXPECT_EQ(serialize_checkpoint(back), text);
 }
 
+TEST(SweepCheckpoint, AShakerCoilsCurrentComesBackBitForBit) {
+    SweepCheckpoint c = sample_checkpoint();
+    AttachmentState coil;
+    coil.coil_current_a = -1.0 / 3.0;
+    c.state.attachments.push_back(coil);
+    c.state.loads.push_back(Eigen::Matrix<double, 6, 1>::Zero());
+    const std::string text = serialize_checkpoint(c);
+    const SweepCheckpoint back = parse_checkpoint(text, kFile);
+    ASSERT_EQ(back.state.attachments.size(), 3u);
+    ASSERT_TRUE(back.state.attachments[2].coil_current_a.has_value());
+    EXPECT_EQ(*back.state.attachments[2].coil_current_a, -1.0 / 3.0);
+    EXPECT_FALSE(back.state.attachments[2].sliders.has_value());
+    EXPECT_FALSE(back.state.attachments[1].coil_current_a.has_value());
+    EXPECT_EQ(serialize_checkpoint(back), text);
+}
+
 TEST(SweepCheckpoint, EndsWithTheChecksumOfEverythingBeforeIt) {
     const std::string text = serialize_checkpoint(sample_checkpoint());
     const std::string_view content = checkpoint_content(text);

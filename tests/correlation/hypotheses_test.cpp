@@ -285,6 +285,21 @@ TEST(HiddenEffect, AnIwanJointIsNamedFittedAndPredictsTheHeldOutLevel) {
     EXPECT_LT(c.fit, 2.0 * w.fit) << c.sentence << "; predicted " << w.fit;
 }
 
+TEST(HiddenEffect, AVoltageDrivenShakerIsNamedFittedAndPredictsTheHeldOutLevel) {
+    // The rig records the amplifier's voltage as its reference, not a force: a shaker of
+    // force factor 12 N/A and coil resistance 4 ohm (1 mH) turns it into force and its
+    // back-EMF damps the FRF (about 36 N s/m at the drive point). The model drives a force:
+    // only the shaker's row can turn newtons into volts, and its fit finds both values.
+    auto truth = baseline();
+    truth.physics.shaker.force_factor_n_per_a = 12.0;
+    truth.physics.shaker.coil_resistance_ohm = 4.0;
+    truth.physics.shaker.coil_inductance_h = 1e-3;
+    const DiagnosisResult d = diagnose_hidden(truth, "hidden-shaker");
+    expect_found(d, "electrodynamic-shaker",
+                 {{"physics.shaker.force_factor_n_per_a", 12.0},
+                  {"physics.shaker.coil_resistance_ohm", 4.0}});
+}
+
 TEST(HiddenEffect, AirDragConcealedByALowerBackgroundIsFoundAsThePair) {
     // The rig damps less than the config says (0.35 % against 0.5 %) and the air drags
     // (C_D = 20): at 1 g the two nearly cancel, the residual grows like neither alone. A

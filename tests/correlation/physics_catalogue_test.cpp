@@ -39,7 +39,7 @@ TEST(PhysicsCatalogue, EveryRowIsNamedOnceWithItsWordsAndASignature) {
         EXPECT_FALSE(row.signature.empty()) << row.name;
         EXPECT_TRUE(static_cast<bool>(row.switch_on)) << row.name;
     }
-    EXPECT_GE(names.size(), 11U);
+    EXPECT_GE(names.size(), 12U);
     EXPECT_THROW(catalogue_entry("no-such-physics"), std::invalid_argument);
 }
 
@@ -101,6 +101,34 @@ TEST(PhysicsCatalogue, GravityTiltFreesEveryArrangementsTiltForADemBed) {
     EXPECT_EQ(free.front().path, "arrangements.H-0.gravity_tilt_deg");
     EXPECT_EQ(free.front().lo, -10.0);
     EXPECT_EQ(free.front().hi, 10.0);
+}
+
+TEST(PhysicsCatalogue, ParticleSizeScatterScattersTheDiametersOfADemBedOfNominalSpheres) {
+    const std::string row = "particle-size-scatter";
+    EXPECT_FALSE(applies(row, h0({"dampers.pd.model=rigid"})));
+    EXPECT_FALSE(applies(row, h0({"dampers.pd.particles.diameter_scatter=0.05"})));
+    const auto& signature = catalogue_entry(row).signature;
+    ASSERT_EQ(signature.size(), 1U);
+    EXPECT_EQ(signature.front().feature, LevelFeature::damping_ratio);
+    EXPECT_EQ(signature.front().shape, ScalingShape::inverse);
+    EXPECT_EQ(signature.front().sign, +1);
+    auto config = h0();
+    ASSERT_TRUE(applies(row, config));
+    const auto free = switched(row, config);
+    EXPECT_EQ(config.campaign.dampers.front().particles.diameter_scatter, 0.005);
+    ASSERT_EQ(free.size(), 1U);
+    EXPECT_EQ(free.front().path, "dampers.pd.particles.diameter_scatter");
+    EXPECT_FALSE(free.front().log_scale);
+    EXPECT_EQ(free.front().lo, 0.005);
+    EXPECT_EQ(free.front().hi, 0.2);
+    EXPECT_NO_THROW(bench::load_campaign_config_text(bench::resolved_config_toml(config), "on"));
+    EXPECT_FALSE(applies(row, config));
+    // Freed by its key alone, it is searched over its whole declared bound.
+    const auto declared =
+        parse_free_parameters(h0(), {"dampers.pd.particles.diameter_scatter"}, "--free");
+    ASSERT_EQ(declared.size(), 1U);
+    EXPECT_EQ(declared.front().lo, 0.0);
+    EXPECT_EQ(declared.front().hi, 0.2);
 }
 
 TEST(PhysicsCatalogue, ClampComplianceHingesTheClampOnASpringAboutTheDrivenBendingAxis) {

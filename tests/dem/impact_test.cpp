@@ -147,6 +147,25 @@ TEST(ViscoelasticImpact, TheRestitutionFallsWithTheImpactSpeedAsTheFifthRoot) {
     }
 }
 
+TEST(ViscousImpact, ADashpotGivenDirectlyRestitutesAsTheSpringDashpotOfItsDampingRatio) {
+    // Hooke, k = 1e5 N/m, a dashpot c given directly: zeta = c / (2 sqrt(k m*)), so a sphere
+    // on a wall (m* = m) and two spheres head-on (m* = m / 2) rebound differently, each as
+    // the spring-dashpot without tensile force of its own zeta (Schwager & Poeschel 2007).
+    const double k = 1e5;
+    const double c = 0.2 * std::sqrt(k * sphere_mass());  // zeta 0.1 on the wall
+    for (const bool wall : {true, false}) {
+        SolverOptions o = free_box_options(wall ? 1 : 2, NormalLaw::hooke);
+        o.contact.damping = DampingLaw::viscous;
+        o.contact.particle_particle.dashpot_n_s_per_m = c;
+        o.contact.particle_wall.dashpot_n_s_per_m = c;
+        const double m_eff = wall ? sphere_mass() : 0.5 * sphere_mass();
+        const double zeta = c / (2.0 * std::sqrt(k * m_eff));
+        const double tc = kPi * std::sqrt(m_eff / k);
+        const double e = impact(o, wall, kSpeed, tc / 400.0).restitution;
+        EXPECT_NEAR(e, linear_restitution_from_zeta(zeta), 2e-3) << (wall ? "wall" : "pair");
+    }
+}
+
 /// Contact time of one sphere launched along +x or -x at kSpeed into a curved wall.
 double curved_wall_contact_time(const SolverOptions& o, const Eigen::Vector3d& x0, double direction,
                                 double dt) {

@@ -26,6 +26,96 @@ TEST(MakeRadii, SizeDistributionFollowsTheNumberFractions) {
     EXPECT_EQ(make_radii(o, 3), r);
 }
 
+/// Relative deviations d_i / nominal_i - 1 of the scattered diameters from the unscattered
+/// ones of the same seed.
+std::vector<double> relative_deviations(const ParticleOptions& o, std::uint64_t seed) {
+    ParticleOptions nominal = o;
+    nominal.diameter_scatter = 0.0;
+    const auto r = make_radii(o, seed), r0 = make_radii(nominal, seed);
+    std::vector<double> x(r.size());
+    for (std::size_t i = 0; i < r.size(); ++i) x[i] = r[i] / r0[i] - 1.0;
+    return x;
+}
+
+TEST(MakeRadii, DiameterScatterHasTheNominalMeanAndTheSetDeviation) {
+    // x = s u with u uniform on [-sqrt 3, sqrt 3]: E u = 0, E u^2 = 1, E u^4 = 9/5. Over n
+    // spheres the sample mean of x has the standard deviation s / sqrt(n), and the sample
+    // standard deviation S that of sqrt((E u^4 - 1) / n) s / 2 = s sqrt(0.2 / n) (delta
+    // method on S^2). Both within 4 of their standard deviations (a chance of 6e-5 each).
+    ParticleOptions o;
+    o.count = 400;
+    const double n = o.count;
+    for (const double s : {0.05, 0.2}) {
+        for (const std::uint64_t seed : {1, 7, 42}) {
+            SCOPED_TRACE("s = " + std::to_string(s) + ", seed " + std::to_string(seed));
+            o.diameter_scatter = s;
+            const std::vector<double> x = relative_deviations(o, seed);
+            double mean = 0.0;
+            for (double v : x) mean += v / n;
+            double square = 0.0;
+            for (double v : x) square += (v - mean) * (v - mean) / (n - 1.0);
+            EXPECT_LE(std::abs(mean), 4.0 * s / std::sqrt(n));
+            EXPECT_LE(std::abs(std::sqrt(square) - s), 4.0 * s * std::sqrt(0.2 / n));
+        }
+    }
+}
+
+TEST(MakeRadii, EveryScatteredDiameterLiesWithinItsBoundAndTheLargestPossible) {
+    ParticleOptions o;
+    o.count = 300;
+    o.diameter_scatter = 0.2;
+    const double half_width = std::sqrt(3.0) * o.diameter_scatter;
+    for (const double r : make_radii(o, 5)) {
+        EXPECT_GE(2.0 * r, (1.0 - half_width) * o.diameter_m);
+        EXPECT_LE(2.0 * r, (1.0 + half_width) * o.diameter_m);
+        EXPECT_LE(2.0 * r, o.largest_diameter_m());
+    }
+    EXPECT_DOUBLE_EQ(o.largest_diameter_m(), (1.0 + half_width) * o.diameter_m);
+    // Each class scatters about its own diameter; the classes are shuffled as without it.
+    o.size_distribution = {{1e-3, 0.25}, {2e-3, 0.75}};
+    for (const double x : relative_deviations(o, 5)) EXPECT_LE(std::abs(x), half_width);
+    EXPECT_DOUBLE_EQ(o.largest_diameter_m(), (1.0 + half_width) * 2e-3);
+}
+
+TEST(MakeRadii, ScatterIsTheSameForASeedAndNoneAtZero) {
+    ParticleOptions o;
+    o.count = 200;
+    o.diameter_scatter = 0.1;
+    EXPECT_EQ(make_radii(o, 11), make_radii(o, 11));
+    EXPECT_NE(make_radii(o, 11), make_radii(o, 12));
+    o.diameter_scatter = 0.0;
+    EXPECT_EQ(make_radii(o, 11), std::vector<double>(200, 0.5 * o.diameter_m));
+    EXPECT_EQ(o.largest_diameter_m(), o.diameter_m);
+}
+
+TEST(MakeRadii, AScatterOutsideItsBoundIsAViolation) {
+    ParticleOptions o;
+    for (const double s : {-0.1, 0.3}) {
+        o.diameter_scatter = s;
+        const Violations v = o.validate();
+        ASSERT_EQ(v.size(), 1u);
+        EXPECT_EQ(v.front().key, "diameter_scatter");
+    }
+}
+
+TEST(FillRandom, PlacesTheScatteredSpheresOfItsSeed) {
+    SolverOptions o;
+    o.contact.normal_stiffness = 1e4;
+    o.particles.count = 60;
+    o.particles.diameter_scatter = 0.15;
+    o.enclosure.height_m = 50e-3;
+    const ParticleSet a = fill_random(o, 9);
+    EXPECT_EQ(a.radii_m, make_radii(o.particles, 9));
+    const Enclosure enc(o.enclosure);
+    for (std::size_t i = 0; i < a.positions_m.size(); ++i) {
+        EXPECT_GE(enc.clearance(a.positions_m[i]), a.radii_m[i] * (1 - 1e-9));
+        for (std::size_t j = 0; j < i; ++j) {
+            const double touch = a.radii_m[i] + a.radii_m[j];
+            EXPECT_GE((a.positions_m[i] - a.positions_m[j]).norm(), touch * (1 - 1e-9));
+        }
+    }
+}
+
 TEST(FillRandom, PlacesNonOverlappingSpheresInsideDeterministically) {
     SolverOptions o;
     o.contact.normal_stiffness = 1e4;
@@ -465,6 +555,32 @@ TEST(ChooseContact, AutomaticStiffnessIsSizedForTheLargestSpheresAtTheExcitation
                                                       : 0.4 * chosen.stiffness * std::pow(d, 2.5);
         EXPECT_NEAR(stored, energy, 1e-9 * energy);
     }
+}
+
+TEST(ChooseContact, AScatterSizesTheStiffnessAndTimeStepForTheLargestSphereItCanDraw) {
+    ExcitationCase c;
+    c.particles.diameter_scatter = 0.1;
+    AutoStiffnessInput in = c.input(NormalLaw::hooke, 0.8);
+    in.particle_diameter_m = (1.0 + std::sqrt(3.0) * 0.1) * 4e-3;
+    const AutoStiffness expected = auto_stiffness(in);
+    const ExcitationContact chosen = c.choose(NormalLaw::hooke, 0.8, std::nullopt);
+    EXPECT_EQ(chosen.stiffness, expected.stiffness);
+    EXPECT_EQ(chosen.time_step_s, expected.time_step_s);
+}
+
+TEST(SolverOptions, RodsMustClearTheLargestScatteredSphere) {
+    SolverOptions o;
+    o.contact.normal_stiffness = 1e4;
+    o.particles.diameter_m = 3e-3;
+    o.enclosure.shape = EnclosureShape::box;
+    o.enclosure.rods.enabled = true;
+    o.enclosure.rods.rod_diameter_m = 1e-3;
+    o.enclosure.rods.cell_size_m = 4.2e-3;  // clears 3 mm, not 3 (1 + sqrt(3) 0.1) = 3.52 mm
+    EXPECT_TRUE(o.validate().empty());
+    o.particles.diameter_scatter = 0.1;
+    const Violations v = o.validate();
+    ASSERT_EQ(v.size(), 1u);
+    EXPECT_EQ(v.front().key, "enclosure.rods.cell_size_m");
 }
 
 TEST(ChooseContact, GivenHookeStiffnessStepsAFractionOfThePairContactTime) {
