@@ -7,11 +7,11 @@
 
 namespace sb::bench {
 
-Eigen::Vector3d arrangement_gravity(const ArrangementSpec& arrangement) {
+Eigen::Vector3d arrangement_gravity(const ArrangementSpec& arrangement, double g_m_s2) {
     const Eigen::Vector3d nominal =
         arrangement.oscillation == ArrangementSpec::Oscillation::vertical
-            ? Eigen::Vector3d(0.0, 0.0, -kStandardGravity)
-            : Eigen::Vector3d(0.0, -kStandardGravity, 0.0);
+            ? Eigen::Vector3d(0.0, 0.0, -g_m_s2)
+            : Eigen::Vector3d(0.0, -g_m_s2, 0.0);
     if (arrangement.gravity_tilt_deg == 0.0) return nominal;
     const double angle = deg_to_rad(arrangement.gravity_tilt_deg);
     const double c = std::cos(angle);

@@ -10,10 +10,11 @@
 
 namespace sb::bench {
 
-/// Gravity in the structure frame [m/s^2]. The shaker drives z. Horizontal oscillation: the
-/// section's long side (y) is vertical, gravity along -y. Vertical oscillation: gravity
-/// along -z. Either turned about the beam axis x by the arrangement's gravity_tilt_deg.
-Eigen::Vector3d arrangement_gravity(const ArrangementSpec& arrangement);
+/// Gravity of magnitude `g_m_s2` in the structure frame [m/s^2]. The shaker drives z.
+/// Horizontal oscillation: the section's long side (y) is vertical, gravity along -y.
+/// Vertical oscillation: gravity along -z. Either turned about the beam axis x by the
+/// arrangement's gravity_tilt_deg.
+Eigen::Vector3d arrangement_gravity(const ArrangementSpec& arrangement, double g_m_s2);
 
 /// Rotation from the enclosure frame (axis = local z) to the structure frame: the axis tilted
 /// from the motion (z) by the damper angle about the beam axis x, towards +y. At 0 deg the

@@ -206,7 +206,8 @@ structure::StructureSpec arrangement_structure(const CampaignConfig& config,
                                                bool all_particles_rigid) {
     structure::StructureSpec spec = config.structure;
     spec.beam = spec.beam.resolved();  // masses at named points placed there
-    spec.gravity_m_s2 = arrangement_gravity(arrangement);
+    // The config's gravity gives the magnitude, the arrangement its direction.
+    spec.gravity_m_s2 = arrangement_gravity(arrangement, config.structure.gravity_m_s2.norm());
     const ShakerSpec& shaker = config.physics.shaker;
     if (shaker.on() && shaker.armature_mass_kg > 0.0) {
         // The armature moves with the drive point (a rigid stinger): its mass is the

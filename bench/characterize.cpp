@@ -202,10 +202,10 @@ CharacterizationGrid plan_grid(const CampaignConfig& config, const CharacterizeO
 /// The settled bed of bed `b` of the grid.
 dem::ParticleSet settle(const CharacterizationGrid& grid, std::size_t b) {
     const auto& bed = grid.beds[b];
-    const auto& arrangement = grid.plan.arrangements[bed.arrangement].arrangement;
-    const DamperMounting mounting = damper_mounting(arrangement, *bed.damper);
+    const PreparedArrangement& prepared = grid.plan.arrangements[bed.arrangement];
+    const DamperMounting mounting = damper_mounting(prepared.arrangement, *bed.damper);
     return settled_bed(*bed.damper, bed.contact.stiffness, mounting.rotation,
-                       arrangement_gravity(arrangement), bed.seed);
+                       prepared.structure.gravity_m_s2, bed.seed);
 }
 
 /// Run `r` of the grid on its settled bed.
@@ -219,7 +219,7 @@ ApparentMassPoint measure(const CampaignConfig& config, const CharacterizeOption
     const DamperMounting mounting = damper_mounting(prepared.arrangement, *bed.damper);
     EnclosureSetup setup;
     setup.options = bed.damper->solver_options(bed.contact.stiffness);
-    setup.options.gravity_m_s2 = arrangement_gravity(prepared.arrangement);
+    setup.options.gravity_m_s2 = prepared.structure.gravity_m_s2;
     if (bed.damper->locked) setup.options.lock.fraction = 1.0;
     setup.mount_rotation = mounting.rotation;
     setup.offset_m = mounting.origin_m;

@@ -80,7 +80,9 @@ std::shared_ptr<const DescribingFunction> function_of(const CampaignConfig& conf
 
 /// The bed's weight as a load on the point: its mass at the centre of a bed at the
 /// packing of a settled one (0.6) on the enclosure floor, as the rigid model places it.
-PointLoad bed_weight(const ArrangementSpec& arrangement, const DamperSpec& damper, double mass_kg) {
+PointLoad bed_weight(const PreparedArrangement& prepared, const DamperSpec& damper,
+                     double mass_kg) {
+    const ArrangementSpec& arrangement = prepared.arrangement;
     const auto& e = damper.enclosure;
     const double floor_m2 = e.shape == dem::EnclosureShape::cylinder
                                 ? kPi * e.inner_diameter_m * e.inner_diameter_m / 4.0
@@ -90,7 +92,7 @@ PointLoad bed_weight(const ArrangementSpec& arrangement, const DamperSpec& dampe
                                                   kPackingFraction / floor_m2);
     const DamperMounting mounting = damper_mounting(arrangement, damper);
     const Eigen::Vector3d arm = mounting.from_enclosure(Eigen::Vector3d(0.0, 0.0, 0.5 * depth));
-    const Eigen::Vector3d w = mass_kg * arrangement_gravity(arrangement);
+    const Eigen::Vector3d w = mass_kg * prepared.structure.gravity_m_s2;
     return {w, arm.cross(w)};
 }
 
@@ -267,7 +269,7 @@ Attachment describing_function_attachment(const CampaignConfig& config, const Da
     std::map<std::string, CharacterizationTable> cache;
     const CharacterizationTable& table = table_of(config, damper, cache);
     auto function = function_of(config, damper, prepared.arrangement.name, table);
-    const PointLoad weight = bed_weight(prepared.arrangement, damper, function->bed_mass_kg());
+    const PointLoad weight = bed_weight(prepared, damper, function->bed_mass_kg());
     DescribingFunctionDamper model(function, prepared.structure.excitation.direction,
                                    prepared.model.point(damper.point).position_m, weight);
     return {damper.name, damper.point, std::move(model)};

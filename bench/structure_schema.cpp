@@ -389,8 +389,10 @@ std::shared_ptr<const config::Table> structure_table() {
         .doc("modes kept in the reduced modal model and printed by `modes`");
     t.vector3(
          "gravity_m_s2", [](StructureSpec & s) -> auto& { return s.gravity_m_s2; },
-         "gravity in the structure frame (it acts on particles, not on the linear "
-         "structure; each arrangement sets its own)")
+         "gravity: its magnitude is what every arrangement turns to its own direction "
+         "(horizontal oscillation: -y, vertical: -z, tilted by gravity_tilt_deg); it acts on "
+         "the particles, not on the linear structure; [0, 0, 0]: weightless (a damper in "
+         "orbit, an impact-damper model without gravity)")
         .unit("m/s^2");
     t.table(
          "beam", [](StructureSpec & s) -> auto& { return s.beam; }, beam_table())

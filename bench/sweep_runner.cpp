@@ -234,7 +234,7 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
                       SweepProgress& progress) {
     const CampaignSpec& campaign = config.campaign;
     const PreparedArrangement& prepared = *task.prepared;
-    const Eigen::Vector3d gravity = arrangement_gravity(prepared.arrangement);
+    const Eigen::Vector3d gravity = prepared.structure.gravity_m_s2;
     // The planned grid; refinement may add frequencies at the end.
     std::vector<double> frequencies = task.frequencies_hz;
 

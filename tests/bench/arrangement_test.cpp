@@ -10,6 +10,7 @@
 
 #include "bench/campaign.hpp"
 #include "bench/campaign_config.hpp"
+#include "bench/campaign_plan.hpp"
 #include "campaign_fixtures.hpp"
 #include "config/errors.hpp"
 
@@ -46,8 +47,8 @@ TEST(Arrangement, HorizontalPutsGravityAlongMinusYAndVerticalAlongMinusZ) {
     h.oscillation = ArrangementSpec::Oscillation::horizontal;
     ArrangementSpec v;
     v.oscillation = ArrangementSpec::Oscillation::vertical;
-    expect_near(arrangement_gravity(h), Eigen::Vector3d(0.0, -kG, 0.0), kRounding);
-    expect_near(arrangement_gravity(v), Eigen::Vector3d(0.0, 0.0, -kG), kRounding);
+    expect_near(arrangement_gravity(h, kG), Eigen::Vector3d(0.0, -kG, 0.0), kRounding);
+    expect_near(arrangement_gravity(v, kG), Eigen::Vector3d(0.0, 0.0, -kG), kRounding);
 }
 
 TEST(Arrangement, AGravityTiltTurnsGravityAboutTheBeamAxis) {
@@ -56,11 +57,25 @@ TEST(Arrangement, AGravityTiltTurnsGravityAboutTheBeamAxis) {
     const double s = std::sin(3.0 * std::numbers::pi / 180.0);
     const double c = std::cos(3.0 * std::numbers::pi / 180.0);
     // Horizontal: g sin(3 deg) along -z, the motion.
-    expect_near(arrangement_gravity(h), Eigen::Vector3d(0.0, -kG * c, -kG * s), kRounding);
+    expect_near(arrangement_gravity(h, kG), Eigen::Vector3d(0.0, -kG * c, -kG * s), kRounding);
     ArrangementSpec v;
     v.oscillation = ArrangementSpec::Oscillation::vertical;
     v.gravity_tilt_deg = 3.0;
-    expect_near(arrangement_gravity(v), Eigen::Vector3d(0.0, kG * s, -kG * c), kRounding);
+    expect_near(arrangement_gravity(v, kG), Eigen::Vector3d(0.0, kG * s, -kG * c), kRounding);
+}
+
+TEST(Arrangement, TheConfigsGravityGivesTheMagnitudeEveryArrangementTurns) {
+    // The shipped H-0 campaign on the Moon and weightless: the arrangement keeps the
+    // direction (-y, horizontal oscillation), the config gives the magnitude.
+    auto config = load_campaign_config_text(test::paper000_h0_with({}), "h0.toml");
+    const auto gravity_of = [](const CampaignConfig& c) {
+        return plan_campaign(c, {}).arrangements.front().structure.gravity_m_s2;
+    };
+    expect_near(gravity_of(config), Eigen::Vector3d(0.0, -kG, 0.0), kRounding);
+    apply_overrides(config, {"structure.gravity_m_s2=[0, 0, -1.62]"});
+    expect_near(gravity_of(config), Eigen::Vector3d(0.0, -1.62, 0.0), kRounding);
+    apply_overrides(config, {"structure.gravity_m_s2=[0, 0, 0]"});
+    expect_near(gravity_of(config), Eigen::Vector3d::Zero(), 0.0);
 }
 
 TEST(Arrangement, TheDamperAxisMakesTheArrangementAngleWithTheMotion) {
@@ -74,10 +89,12 @@ TEST(Arrangement, TheDamperAxisMakesTheArrangementAngleWithTheMotion) {
     }
     // H-90: the axis is vertical, so gravity points down the axis onto the floor; H-0: across.
     ArrangementSpec h90 = arrangement(90.0);
-    const Eigen::Vector3d local_g = mounting_rotation(h90).transpose() * arrangement_gravity(h90);
+    const Eigen::Vector3d local_g =
+        mounting_rotation(h90).transpose() * arrangement_gravity(h90, kG);
     expect_near(local_g, Eigen::Vector3d(0.0, 0.0, -kG), kRounding);
     ArrangementSpec h0 = arrangement(0.0);
-    EXPECT_NEAR((mounting_rotation(h0).transpose() * arrangement_gravity(h0)).z(), 0.0, kRounding);
+    EXPECT_NEAR((mounting_rotation(h0).transpose() * arrangement_gravity(h0, kG)).z(), 0.0,
+                kRounding);
 }
 
 TEST(Arrangement, AtZeroDegreesTheEnclosureSitsAtItsMountOffset) {
