@@ -400,11 +400,11 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
             if (shaker.on()) {
                 // The transducer: the blocked force less what the coil, the suspension and
                 // the armature's inertia take back at the drive point.
-                const Complex a_drive = coil ? s.accelerations[*coil]
-                                             : Complex(0.0);  // (a shaker always brings its coil)
-                const Complex coil_mass = coil ? s.masses[*coil] : Complex(0.0);
+                // (a shaker on brings its coil: physics_attachments adds it at the drive point)
+                const std::size_t k = coil.value();
                 id::ChannelValue transducer;
-                transducer.amplitude = blocked - (coil_mass + shaker.armature_mass_kg) * a_drive;
+                transducer.amplitude =
+                    blocked - (s.masses[k] + shaker.armature_mass_kg) * s.accelerations[k];
                 transducer.rms = std::abs(transducer.amplitude) / std::sqrt(2.0);
                 row.values.push_back(transducer);
             }

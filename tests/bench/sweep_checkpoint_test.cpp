@@ -86,37 +86,39 @@ TEST(SweepCheckpoint, ReadsBackExactlyWhatWasWritten) {
     EXPECT_EQ(serialize_checkpoint(back), text);
 }
 
-TEST(SweepCheckpoint, AnIwanJointsSlidersComeBackBitForBit) {
+/// The sample checkpoint with `extra` as a third attachment, written and read back; written
+/// again, the same text.
+SweepCheckpoint read_back_with(const AttachmentState& extra) {
     SweepCheckpoint c = sample_checkpoint();
-    AttachmentState joint;
-    joint.sliders = std::vector<double>{1.0 / 3.0, -0.0, -2.5e-7, 0.0};
-    c.state.attachments.push_back(joint);
+    c.state.attachments.push_back(extra);
     c.state.loads.push_back(Eigen::Matrix<double, 6, 1>::Zero());
     const std::string text = serialize_checkpoint(c);
-    const SweepCheckpoint back = parse_checkpoint(text, kFile);
+    SweepCheckpoint back = parse_checkpoint(text, kFile);
+    EXPECT_EQ(serialize_checkpoint(back), text);
+    return back;
+}
+
+TEST(SweepCheckpoint, AnIwanJointsSlidersComeBackBitForBit) {
+    AttachmentState joint;
+    joint.sliders = std::vector<double>{1.0 / 3.0, -0.0, -2.5e-7, 0.0};
+    const SweepCheckpoint back = read_back_with(joint);
     ASSERT_EQ(back.state.attachments.size(), 3u);
     ASSERT_TRUE(back.state.attachments[2].sliders.has_value());
     EXPECT_FALSE(back.state.attachments[2].dem.has_value());
     EXPECT_EQ(*back.state.attachments[2].sliders, *joint.sliders);
     EXPECT_TRUE(std::signbit((*back.state.attachments[2].sliders)[1]));
     EXPECT_FALSE(back.state.attachments[1].sliders.has_value());
-    EXPECT_EQ(serialize_checkpoint(back), text);
 }
 
 TEST(SweepCheckpoint, AShakerCoilsCurrentComesBackBitForBit) {
-    SweepCheckpoint c = sample_checkpoint();
     AttachmentState coil;
     coil.coil_current_a = -1.0 / 3.0;
-    c.state.attachments.push_back(coil);
-    c.state.loads.push_back(Eigen::Matrix<double, 6, 1>::Zero());
-    const std::string text = serialize_checkpoint(c);
-    const SweepCheckpoint back = parse_checkpoint(text, kFile);
+    const SweepCheckpoint back = read_back_with(coil);
     ASSERT_EQ(back.state.attachments.size(), 3u);
     ASSERT_TRUE(back.state.attachments[2].coil_current_a.has_value());
     EXPECT_EQ(*back.state.attachments[2].coil_current_a, -1.0 / 3.0);
     EXPECT_FALSE(back.state.attachments[2].sliders.has_value());
     EXPECT_FALSE(back.state.attachments[1].coil_current_a.has_value());
-    EXPECT_EQ(serialize_checkpoint(back), text);
 }
 
 TEST(SweepCheckpoint, EndsWithTheChecksumOfEverythingBeforeIt) {
