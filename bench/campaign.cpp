@@ -26,12 +26,11 @@ std::string number_text(double v) {
 }  // namespace
 
 /// "H-0 2 g: 2 points with status closest left out of the fits (6.301, 6.412 Hz)".
-std::string skipped_points_line(const id::LevelIdentification& level) {
+std::string skipped_points_line(const id::LevelIdentification& level, const std::string& unit) {
     std::ostringstream out;
-    out << level.arrangement << ' ' << number_text(level.level_g)
-        << " g: " << level.skipped_hz.size() << " point"
-        << (level.skipped_hz.size() == 1 ? "" : "s") << " with status "
-        << id::flagged_status_text(level) << " left out of the fits (";
+    out << level.arrangement << ' ' << number_text(level.level_g) << ' ' << unit << ": "
+        << level.skipped_hz.size() << " point" << (level.skipped_hz.size() == 1 ? "" : "s")
+        << " with status " << id::flagged_status_text(level) << " left out of the fits (";
     for (std::size_t i = 0; i < level.skipped_hz.size(); ++i) {
         char f[32];
         std::snprintf(f, sizeof f, "%.3f", level.skipped_hz[i]);
@@ -50,7 +49,7 @@ void identify_campaign(const CampaignConfig& config,
     result.recording.damping = id::damping_rows(result.levels);
     if (progress) {
         for (const auto& level : result.levels) {
-            if (!level.skipped_hz.empty()) progress(skipped_points_line(level));
+            if (!level.skipped_hz.empty()) progress(skipped_points_line(level, level_unit(config)));
         }
     }
 }

@@ -78,8 +78,10 @@ struct CampaignResult {
 };
 
 /// "H-0 2 g: 2 points with status closest left out of the fits (6.301, 6.412 Hz)": the line
-/// a campaign prints for a level whose flagged points the fits left out.
-std::string skipped_points_line(const identification::LevelIdentification& level);
+/// a campaign prints for a level whose flagged points the fits left out (`unit`: a fixed
+/// drive's level unit, "V" in "H-0 0.2 V: ...").
+std::string skipped_points_line(const identification::LevelIdentification& level,
+                                const std::string& unit = "g");
 
 /// Identifies result.recording per arrangement, level and filling at the control point
 /// (result.levels, result.recording.damping) and reports to `progress` (when set) each level

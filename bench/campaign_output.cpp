@@ -6,6 +6,7 @@
 #include <ctime>
 #include <sstream>
 
+#include "bench/campaign_plan.hpp"
 #include "bench/resolved_config.hpp"
 #include "config/value.hpp"
 #include "core/text_file.hpp"
@@ -99,12 +100,14 @@ void write_campaign_output(const CampaignConfig& config, const CampaignResult& r
         // No estimate resolved: the file is there all the same, with its header.
         id::write_damping_csv(out_dir / "damping.csv", {});
     }
+    // A controlled level in g, a fixed drive's amplitude in its own unit.
+    const std::string unit = level_unit(config);
     if (config.campaign.output.uff) {
         std::vector<id::Uff58Record> records;
         for (const auto& level : result.levels) {
             char description[128];
-            std::snprintf(description, sizeof description, "%s %.6g g", level.arrangement.c_str(),
-                          level.level_g);
+            std::snprintf(description, sizeof description, "%s %.6g %s", level.arrangement.c_str(),
+                          level.level_g, unit.c_str());
             records.push_back(id::to_uff58(level.frf, description));
         }
         id::write_uff58(out_dir / "frf.uff", records);
@@ -120,7 +123,12 @@ void write_campaign_output(const CampaignConfig& config, const CampaignResult& r
     write_file_atomically(out_dir / "config.resolved.toml", resolved_config_toml(config));
     write_provenance(config, result, directory);
     if (config.campaign.output.plots) {
-        const auto plots = id::write_plots(out_dir, result.levels);
+        id::PlotOptions plot_options;
+        plot_options.level_unit = unit;
+        if (config.campaign.drive.fixed()) {
+            plot_options.level_axis = "fixed drive amplitude [" + unit + " peak]";
+        }
+        const auto plots = id::write_plots(out_dir, result.levels, plot_options);
         if (!plots.message.empty())
             std::fprintf(stderr, "shakerbench: %s\n", plots.message.c_str());
     }

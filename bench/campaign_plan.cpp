@@ -7,7 +7,9 @@
 
 #include "bench/arrangement.hpp"
 #include "bench/frequency_grid.hpp"
+#include "bench/linear_estimate.hpp"
 #include "bench/physics_attachments.hpp"
+#include "bench/shaker.hpp"
 #include "config/errors.hpp"
 #include "config/write.hpp"
 #include "core/units.hpp"
@@ -80,9 +82,12 @@ PreparedArrangement prepare(const CampaignConfig& config, const ArrangementSpec&
     return p;
 }
 
-std::string sweep_key(const std::string& arrangement, double level_g,
+/// "_1g" for a controlled level; a fixed drive's amplitude carries its unit's tag.
+std::string sweep_key(const CampaignConfig& config, const std::string& arrangement, double level_g,
                       const std::vector<double>& given_hz) {
-    std::string key = arrangement + "_" + number_text(level_g) + "g";
+    std::string unit = level_unit(config);
+    if (unit == "m/s^2") unit = "mps2";
+    std::string key = arrangement + "_" + number_text(level_g) + unit;
     if (!given_hz.empty()) {
         std::string list;
         for (double f : given_hz) list += config::number_text(f) + ";";
@@ -102,13 +107,39 @@ config::ConfigError problem(const CampaignConfig& config, std::string key, std::
 
 }  // namespace
 
+std::string level_unit(const CampaignConfig& config) {
+    const DriveSpec& drive = config.campaign.drive;
+    if (!drive.fixed()) return "g";
+    if (drive.quantity == DriveSpec::Quantity::base_displacement) return "m";
+    if (config.physics.shaker.on()) return "V";
+    return config.structure.excitation.kind == structure::ExcitationSpec::Kind::base ? "m/s^2"
+                                                                                     : "N";
+}
+
+double fixed_drive_level_g(const CampaignConfig& config, const PreparedArrangement& prepared) {
+    const DriveSpec& drive = config.campaign.drive;
+    double largest_amplitude = 0.0;
+    for (double a : drive.amplitudes) largest_amplitude = std::max(largest_amplitude, a);
+    const ShakerSpec& shaker = config.physics.shaker;
+    double largest_peak = 0.0;
+    for (double f : prepared.frequencies_hz) {
+        double per_unit = linear_response_per_unit_input(
+            prepared.estimate_model, prepared.estimate_basis, prepared.structure.excitation,
+            config.campaign.control_point, f);
+        if (shaker.on()) per_unit *= std::abs(blocked_force_per_volt(shaker, f));
+        largest_peak =
+            std::max(largest_peak, per_unit * drive.excitation_amplitude(largest_amplitude, f));
+    }
+    return m_s2_to_g(largest_peak / std::sqrt(2.0));
+}
+
 Selection Selection::of(const CampaignConfig& config, std::vector<std::string> arrangements,
                         std::vector<double> levels_g, std::vector<double> frequencies_hz) {
     if (arrangements.empty()) {
         for (const auto& a : config.campaign.selected_arrangements())
             arrangements.push_back(a.name);
     }
-    if (levels_g.empty()) levels_g = config.campaign.levels_g;
+    if (levels_g.empty()) levels_g = config.campaign.levels();
     Selection s;
     for (const auto& a : arrangements) {
         for (double level : levels_g) s.sweeps.push_back({a, level, frequencies_hz});
@@ -126,9 +157,13 @@ CampaignPlan plan_campaign(const CampaignConfig& config, const Selection& select
     const CampaignSpec& campaign = config.campaign;
     const Selection wanted = selection.sweeps.empty() ? Selection::of(config, {}, {}) : selection;
     std::vector<config::ConfigError> problems;
-    if (campaign.levels_g.empty() && selection.sweeps.empty()) {
-        problems.push_back(problem(config, "campaign.levels_g", "", "is required",
-                                   "target RMS levels [g]: a campaign needs at least one"));
+    if (campaign.levels().empty() && selection.sweeps.empty()) {
+        problems.push_back(
+            campaign.drive.fixed()
+                ? problem(config, "campaign.drive.amplitudes", "", "is required",
+                          "peak amplitudes of a fixed drive: a campaign needs at least one")
+                : problem(config, "campaign.levels_g", "", "is required",
+                          "target RMS levels [g]: a campaign needs at least one"));
     }
     if (campaign.selected_arrangements().empty() && selection.sweeps.empty()) {
         problems.push_back(problem(config, "arrangements", "", "is required",
@@ -168,9 +203,15 @@ CampaignPlan plan_campaign(const CampaignConfig& config, const Selection& select
             if (a.name == name) plan.arrangements.push_back(prepare(config, a));
         }
     }
-    // One stiffness for the whole campaign: sized for its largest level.
+    // One stiffness for the whole campaign: sized for its largest level (under a fixed drive
+    // the largest RMS the linear model gives at the control point: see fixed_drive_level_g).
     double largest_g = 0.0;
     for (double level : campaign.levels_g) largest_g = std::max(largest_g, level);
+    if (campaign.drive.fixed()) {
+        for (const auto& p : plan.arrangements) {
+            largest_g = std::max(largest_g, fixed_drive_level_g(config, p));
+        }
+    }
     for (const auto& s : wanted.sweeps) {
         for (int filling = 0; filling < campaign.seeds; ++filling) {
             SweepTask t;
@@ -179,13 +220,15 @@ CampaignPlan plan_campaign(const CampaignConfig& config, const Selection& select
                 if (p.arrangement.name == s.arrangement) t.prepared = &p;
             }
             t.level_g = s.level_g;
+            t.level_unit = level_unit(config);
             t.frequencies_hz =
                 s.frequencies_hz.empty() ? t.prepared->frequencies_hz : s.frequencies_hz;
             t.filling = filling;
             t.seed = campaign.seed + static_cast<std::uint64_t>(filling);
-            t.stiffness_level_g = std::max(largest_g, s.level_g);
+            t.stiffness_level_g =
+                campaign.drive.fixed() ? largest_g : std::max(largest_g, s.level_g);
             t.refine = s.frequencies_hz.empty();
-            t.key = sweep_key(s.arrangement, s.level_g, s.frequencies_hz);
+            t.key = sweep_key(config, s.arrangement, s.level_g, s.frequencies_hz);
             if (filling > 0) t.key += "_s" + std::to_string(filling);
             plan.tasks.push_back(std::move(t));
         }

@@ -48,7 +48,9 @@ struct PreparedArrangement {
 struct SweepTask {
     std::size_t index = 0;  ///< place in the campaign (output order)
     const PreparedArrangement* prepared = nullptr;
+    /// The sweep's level: a target RMS [g], or a fixed drive's amplitude in level_unit.
     double level_g = 0.0;
+    std::string level_unit = "g";        ///< "g", or a fixed drive's "N", "m/s^2", "V", "m"
     std::vector<double> frequencies_hz;  ///< in sweep order
     int filling = 0;                     ///< which filling of the bed (0, 1, ... seeds - 1)
     std::uint64_t seed = 1;              ///< its seed: campaign.seed + filling
@@ -69,6 +71,17 @@ struct CampaignPlan {
     std::vector<SweepTask> tasks;                   ///< in campaign order
     [[nodiscard]] int points() const;
 };
+
+/// The unit of a sweep's level: "g" for the controller's target; a fixed drive's amplitude
+/// in "N", "m/s^2" (base acceleration), "V" (through the shaker) or "m" (base displacement).
+std::string level_unit(const CampaignConfig& config);
+
+/// Under a fixed drive, the largest RMS acceleration [g] at the control point that the linear
+/// model with the particles as rigid mass gives over the arrangement's grid at the largest
+/// amplitude: what an automatic contact stiffness is sized for. Without the particles'
+/// damping it overestimates the response near resonance, so the stiffness errs stiff (safe
+/// overlaps, a shorter step); give dampers.NAME.contact.normal_stiffness to choose it.
+double fixed_drive_level_g(const CampaignConfig& config, const PreparedArrangement& prepared);
 
 /// The sweeps of `selection` (or of the whole config). Throws config::ConfigException when
 /// the config cannot run a campaign (no level, no arrangement) or the selection names an

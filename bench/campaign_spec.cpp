@@ -28,6 +28,12 @@ Violations FrequencyGridSpec::validate() const {
     return out;
 }
 
+double DriveSpec::excitation_amplitude(double amplitude, double frequency_hz) const {
+    if (quantity == Quantity::excitation) return amplitude;
+    const double omega = 2.0 * std::acos(-1.0) * frequency_hz;
+    return omega * omega * amplitude;  // x = X sin(w t): its acceleration's amplitude w^2 X
+}
+
 dem::PairProperties ContactSpec::particle_wall() const {
     dem::PairProperties wall;
     wall.restitution = wall_restitution.value_or(particle_particle.restitution);
@@ -37,6 +43,23 @@ dem::PairProperties ContactSpec::particle_wall() const {
         wall_dissipative_constant_s.value_or(particle_particle.dissipative_constant_s);
     wall.dashpot_n_s_per_m = wall_dashpot_n_s_per_m.value_or(particle_particle.dashpot_n_s_per_m);
     return wall;
+}
+
+std::optional<dem::PairProperties> ContactSpec::particle_rod() const {
+    if (!rod_restitution && !rod_sliding_friction && !rod_rolling_friction) return std::nullopt;
+    dem::PairProperties rod = particle_wall();
+    rod.restitution = rod_restitution.value_or(rod.restitution);
+    rod.sliding_friction = rod_sliding_friction.value_or(rod.sliding_friction);
+    rod.rolling_friction = rod_rolling_friction.value_or(rod.rolling_friction);
+    return rod;
+}
+
+std::optional<dem::Material> ContactSpec::rod_material() const {
+    if (!rod_youngs_modulus_pa && !rod_poisson_ratio) return std::nullopt;
+    dem::Material rod = wall_material;
+    rod.youngs_modulus_pa = rod_youngs_modulus_pa.value_or(rod.youngs_modulus_pa);
+    rod.poisson_ratio = rod_poisson_ratio.value_or(rod.poisson_ratio);
+    return rod;
 }
 
 dem::ContactOptions ContactSpec::contact_options(double stiffness) const {
@@ -51,6 +74,8 @@ dem::ContactOptions ContactSpec::contact_options(double stiffness) const {
     c.particle_particle = particle_particle;
     c.particle_wall = particle_wall();
     c.wall_material = wall_material;
+    c.particle_rod = particle_rod();
+    c.rod_material = rod_material();
     return c;
 }
 

@@ -85,6 +85,13 @@ struct ContactSpec {
     std::optional<double> wall_dissipative_constant_s;
     std::optional<double> wall_dashpot_n_s_per_m;
     dem::Material wall_material{};
+    /// Particle-rod coefficients and rod material of an obstacle grid; absent: the wall's
+    /// (the damping constants of the viscoelastic and viscous laws always are the wall's).
+    std::optional<double> rod_restitution;
+    std::optional<double> rod_sliding_friction;
+    std::optional<double> rod_rolling_friction;
+    std::optional<double> rod_youngs_modulus_pa;
+    std::optional<double> rod_poisson_ratio;
     /// Automatic stiffness: largest overlap as a fraction of the diameter at the largest
     /// expected impact speed [-].
     double max_overlap_fraction = 0.01;
@@ -102,6 +109,10 @@ struct ContactSpec {
 
     /// The particle-wall coefficients in use.
     [[nodiscard]] dem::PairProperties particle_wall() const;
+    /// The particle-rod coefficients, when any differs from the wall's.
+    [[nodiscard]] std::optional<dem::PairProperties> particle_rod() const;
+    /// The rod material, when it differs from the wall's.
+    [[nodiscard]] std::optional<dem::Material> rod_material() const;
     /// The DEM contact options with `normal_stiffness` (the given or the chosen one).
     [[nodiscard]] dem::ContactOptions contact_options(double normal_stiffness) const;
 };
@@ -174,6 +185,29 @@ struct OutputSpec {
     Vtk vtk = Vtk::none;
 };
 
+/// How each point's drive amplitude is set: by the RMS controller to a target level at the
+/// control point (paper 000, section 3.2), or fixed per sweep, as an open-loop test holds its
+/// signal generator's voltage or its eccentric's throw (papers 002 and 004).
+struct DriveSpec {
+    enum class Kind { controlled, fixed };
+    static constexpr std::pair<Kind, std::string_view> kKindNames[] = {
+        {Kind::controlled, "controlled"}, {Kind::fixed, "fixed"}};
+    /// What a fixed amplitude is: the excitation's own input (a force [N], a base
+    /// acceleration [m/s^2], through physics.shaker a voltage [V]) or, under base excitation,
+    /// the base displacement [m], whose acceleration (2 pi f)^2 X grows along the sweep.
+    enum class Quantity { excitation, base_displacement };
+    static constexpr std::pair<Quantity, std::string_view> kQuantityNames[] = {
+        {Quantity::excitation, "excitation"}, {Quantity::base_displacement, "base-displacement"}};
+    Kind kind = Kind::controlled;
+    Quantity quantity = Quantity::excitation;
+    /// Peak drive amplitudes of a fixed drive, one sweep each (they are its levels).
+    std::vector<double> amplitudes;
+
+    [[nodiscard]] bool fixed() const { return kind == Kind::fixed; }
+    /// The amplitude in the excitation's unit of the fixed drive `amplitude` at `frequency_hz`.
+    [[nodiscard]] double excitation_amplitude(double amplitude, double frequency_hz) const;
+};
+
 struct CampaignSpec {
     /// How the structure starts every point after the first of a sweep (the first always
     /// starts from the linear steady state, the particles from their settled bed; later
@@ -193,6 +227,7 @@ struct CampaignSpec {
         {PointStart::linear_steady_state, "linear-steady-state"}};
 
     std::vector<double> levels_g;  ///< target RMS levels at the control point [g]
+    DriveSpec drive;
     /// Every arrangement the config defines, in file order.
     std::vector<ArrangementSpec> arrangements;
     /// The names of the arrangements to run, in order; empty: all defined.
@@ -221,6 +256,10 @@ struct CampaignSpec {
 
     /// The arrangements to run, in order (the selection, or every one defined).
     [[nodiscard]] std::vector<ArrangementSpec> selected_arrangements() const;
+    /// The level of every sweep: levels_g, or under a fixed drive its amplitudes.
+    [[nodiscard]] const std::vector<double>& levels() const {
+        return drive.fixed() ? drive.amplitudes : levels_g;
+    }
 };
 
 }  // namespace sb::bench

@@ -67,6 +67,44 @@ std::shared_ptr<const config::Table> frequencies_table() {
     return t.build();
 }
 
+std::shared_ptr<const config::Table> drive_table() {
+    TableBuilder<DriveSpec> t(
+        "the drive",
+        "How each point's drive amplitude is set: by the RMS controller to `campaign.levels_g` "
+        "at the control point (paper 000), or fixed per sweep as in an open-loop test (a "
+        "signal generator at a set voltage, an eccentric of set throw: papers 002 and 004). A "
+        "fixed point runs until the control channel is steady by the controller's settling "
+        "test (`[controller]` tolerance, window, drift and phase tests, transient and "
+        "max_periods), else it is recorded as `unsettled` with the mean of its later half.");
+    t.choice(
+         "kind", [](DriveSpec & d) -> auto& { return d.kind; }, DriveSpec::kKindNames,
+         "controlled RMS level or fixed amplitude")
+        .doc(
+            "`controlled`: the RMS controller holds `campaign.levels_g` at the control point; "
+            "`fixed`: each of `amplitudes` is a sweep's level, driven unchanged at every "
+            "frequency (no controller); points.csv's `level_g` column then holds the "
+            "amplitude, in its own unit");
+    const auto fixed = [](const DriveSpec& d) { return d.fixed(); };
+    t.choice(
+         "quantity", [](DriveSpec & d) -> auto& { return d.quantity; }, DriveSpec::kQuantityNames,
+         "what a fixed amplitude is")
+        .doc(
+            "`excitation`: the excitation's own input, a force [N], a base acceleration "
+            "[m/s^2], or through `[physics.shaker]` the coil voltage [V]; `base-displacement`: "
+            "under base excitation the base displacement [m], its acceleration (2 pi f)^2 X "
+            "growing along the sweep (an eccentric exciter)")
+        .when(fixed, "used with kind = \"fixed\"", true);
+    t.numbers(
+         "amplitudes", [](DriveSpec & d) -> auto& { return d.amplitudes; },
+         "peak amplitudes of a fixed drive, one sweep each")
+        .unit("N, m/s^2, V or m")
+        .bound(Bound::positive())
+        .doc(
+            "peak amplitudes of a fixed drive, one sweep each, in the unit of `quantity`; "
+            "`kind = \"fixed\"` needs at least one and then takes no `campaign.levels_g`");
+    return t.build();
+}
+
 std::shared_ptr<const config::Table> campaign_table() {
     TableBuilder<CampaignConfig> t("the campaign");
     t.string(
@@ -80,8 +118,8 @@ std::shared_ptr<const config::Table> campaign_table() {
         .unit("g")
         .bound(Bound::positive())
         .doc(
-            "target RMS accelerations at the control point (9.80665 m/s^2 per g); `run` needs "
-            "at least one");
+            "target RMS accelerations at the control point (9.80665 m/s^2 per g); a controlled "
+            "drive needs at least one (a fixed drive takes `campaign.drive.amplitudes`)");
     t.strings(
          "arrangements",
          [](CampaignConfig & c) -> auto& { return c.campaign.arrangement_selection; },
@@ -132,6 +170,8 @@ std::shared_ptr<const config::Table> campaign_table() {
     t.table(
         "frequencies", [](CampaignConfig & c) -> auto& { return c.campaign.frequencies; },
         frequencies_table());
+    t.table(
+        "drive", [](CampaignConfig & c) -> auto& { return c.campaign.drive; }, drive_table());
     return t.build();
 }
 
@@ -547,7 +587,7 @@ Violations check_references(const CampaignConfig& config) {
         return std::find(names.begin(), names.end(), name) != names.end();
     };
     const auto text = [](const std::string& s) { return config::quoted(s); };
-    if (!config.campaign.levels_g.empty() && !known(config.campaign.control_point)) {
+    if (!config.campaign.levels().empty() && !known(config.campaign.control_point)) {
         out.push_back({"campaign.control_point", text(config.campaign.control_point),
                        "must name a point of the structure", ""});
     }
@@ -639,6 +679,30 @@ std::shared_ptr<const config::Table> build_campaign_schema() {
                            "needs a force-excited structure (structure.excitation.kind = "
                            "\"force\")",
                            "the shaker drives the structure's excitation point through a stinger"});
+        }
+        const DriveSpec& drive = c.campaign.drive;
+        if (drive.fixed() && drive.amplitudes.empty()) {
+            out.push_back({"campaign.drive.amplitudes", "[]",
+                           "is required with campaign.drive.kind = \"fixed\"",
+                           "peak amplitudes of a fixed drive, one sweep each"});
+        }
+        if (drive.fixed() && !c.campaign.levels_g.empty()) {
+            out.push_back({"campaign.levels_g", config::number_text(c.campaign.levels_g.front()),
+                           "is not used with campaign.drive.kind = \"fixed\" (its levels are "
+                           "campaign.drive.amplitudes)",
+                           "target RMS levels of the controller"});
+        }
+        if (!drive.fixed() && !drive.amplitudes.empty()) {
+            out.push_back({"campaign.drive.amplitudes",
+                           config::number_text(drive.amplitudes.front()),
+                           "needs campaign.drive.kind = \"fixed\"",
+                           "the controller sets the amplitudes of a controlled drive"});
+        }
+        if (drive.fixed() && drive.quantity == DriveSpec::Quantity::base_displacement &&
+            c.structure.excitation.kind != structure::ExcitationSpec::Kind::base) {
+            out.push_back({"campaign.drive.quantity", "\"base-displacement\"",
+                           "needs base excitation (structure.excitation.kind = \"base\")",
+                           "what a fixed amplitude is"});
         }
         if (shaker.on() && shaker.armature_mass_kg > 0.0 &&
             c.structure.kind == structure::StructureSpec::Kind::matrix) {

@@ -320,6 +320,42 @@ std::shared_ptr<const config::Table> contact_table() {
         .unit("-")
         .bound(Bound::closed(-0.999, 0.4999))
         .leaf("wall_material.poisson_ratio");
+    // The obstacle grid's rods (enclosure.rods) may be of another material than the walls.
+    t.number(
+         "rod_restitution", [](ContactSpec & c) -> auto& { return c.rod_restitution; },
+         "particle-rod coefficient of restitution (obstacle grid)")
+        .unit("-")
+        .bound(Bound::left_open(0.0, 1.0))
+        .follows("wall_restitution")
+        .leaf("particle_rod.restitution");
+    t.number(
+         "rod_sliding_friction", [](ContactSpec & c) -> auto& { return c.rod_sliding_friction; },
+         "particle-rod sliding friction coefficient (obstacle grid)")
+        .unit("-")
+        .bound(Bound::non_negative())
+        .follows("wall_sliding_friction")
+        .leaf("particle_rod.sliding_friction");
+    t.number(
+         "rod_rolling_friction", [](ContactSpec & c) -> auto& { return c.rod_rolling_friction; },
+         "particle-rod rolling friction coefficient (obstacle grid)")
+        .unit("-")
+        .bound(Bound::non_negative())
+        .follows("wall_rolling_friction")
+        .leaf("particle_rod.rolling_friction");
+    t.number(
+         "rod_youngs_modulus_pa", [](ContactSpec & c) -> auto& { return c.rod_youngs_modulus_pa; },
+         "rod Young's modulus (Hertz; obstacle grid)")
+        .unit("Pa")
+        .bound(Bound::positive())
+        .follows("wall_youngs_modulus_pa")
+        .leaf("rod_material.youngs_modulus_pa");
+    t.number(
+         "rod_poisson_ratio", [](ContactSpec & c) -> auto& { return c.rod_poisson_ratio; },
+         "rod Poisson ratio (Hertz; obstacle grid)")
+        .unit("-")
+        .bound(Bound::closed(-0.999, 0.4999))
+        .follows("wall_poisson_ratio")
+        .leaf("rod_material.poisson_ratio");
     t.number(
          "tangential_stiffness_ratio",
          [](ContactSpec & c) -> auto& { return c.tangential_stiffness_ratio; },

@@ -125,11 +125,12 @@ struct Solution {
 /// excitation direction d. For a unit force phasor the damper points' accelerations solve
 ///   (I + H_pp diag(M)) a_p = H_pd,
 /// the channels follow as a_c = H_cd - H_cp diag(M) a_p, and F0 scales them to the control
-/// target. M depends on |a_p|: a fixed point on the amplitudes, exact in one step when the
-/// control point is the only damper's point (its amplitude is the target's).
+/// target, or is `fixed_drive` (a fixed drive's excitation amplitude at this frequency). M
+/// depends on |a_p|: a fixed point on the amplitudes, exact in one step when the control
+/// point is the only damper's point (its amplitude is the target's).
 Solution solve_point(const PreparedArrangement& prepared, const std::vector<Described>& dampers,
                      const std::vector<std::string>& channel_points, double level_g,
-                     double frequency_hz) {
+                     double frequency_hz, std::optional<double> fixed_drive) {
     const auto& model = prepared.model;
     const auto& basis = prepared.basis;
     const auto& excitation = prepared.structure.excitation;
@@ -162,13 +163,15 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
     const double target_peak = std::sqrt(2.0) * g_to_m_s2(level_g);
 
     Solution s;
-    // Start: the amplitudes the structure without the dampers would give at the target.
+    // Start: the amplitudes the structure without the dampers would give at the target (or
+    // at the fixed drive).
     std::vector<double> amplitude(nd);
     for (std::size_t j = 0; j < nd; ++j) {
-        amplitude[j] =
-            channel_points.front() == dampers[j].point
-                ? target_peak
-                : target_peak * std::abs(h_pd(static_cast<Eigen::Index>(j))) / std::abs(h_cd(0));
+        const double h = std::abs(h_pd(static_cast<Eigen::Index>(j)));
+        amplitude[j] = fixed_drive ? *fixed_drive * h
+                       : channel_points.front() == dampers[j].point
+                           ? target_peak
+                           : target_peak * h / std::abs(h_cd(0));
     }
     Eigen::VectorXcd mass(static_cast<Eigen::Index>(nd));
     Eigen::VectorXcd a_p;
@@ -184,7 +187,7 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
                                         h_pp * mass.asDiagonal();
         a_p = nd == 0 ? Eigen::VectorXcd() : Eigen::VectorXcd(system.partialPivLu().solve(h_pd));
         a_c = h_cd - h_cp * (mass.asDiagonal() * a_p);
-        s.force_n = target_peak / std::abs(a_c(0));
+        s.force_n = fixed_drive ? *fixed_drive : target_peak / std::abs(a_c(0));
         s.drives_tried.push_back(s.force_n);
         s.iterations = it;
         double change = 0.0;
@@ -368,9 +371,18 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
                                    return physics_describing(*shared, acceleration, f);
                                }});
         }
+        const DriveSpec& drive_spec = campaign.drive;
+        const ShakerSpec& drive_shaker = config.physics.shaker;
         for (double f : task.frequencies_hz) {
+            // A fixed drive's force (through a shaker, the blocked force of its voltage).
+            std::optional<double> fixed;
+            if (drive_spec.fixed()) {
+                fixed =
+                    drive_spec.excitation_amplitude(task.level_g, f) *
+                    (drive_shaker.on() ? std::abs(blocked_force_per_volt(drive_shaker, f)) : 1.0);
+            }
             const Solution s =
-                solve_point(prepared, dampers, result.channel_points, task.level_g, f);
+                solve_point(prepared, dampers, result.channel_points, task.level_g, f, fixed);
             id::PointRow row;
             row.arrangement = prepared.arrangement.name;
             row.level_g = task.level_g;

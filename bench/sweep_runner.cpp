@@ -21,6 +21,7 @@
 #include "bench/specimen_plant.hpp"
 #include "bench/sweep_checkpoint.hpp"
 #include "control/controller.hpp"
+#include "control/fixed_drive.hpp"
 #include "core/units.hpp"
 #include "dem/setup.hpp"
 #include "identification/recording_io.hpp"
@@ -187,8 +188,8 @@ CampaignProgress::CampaignProgress(std::function<void(const std::string&)> sink,
 void CampaignProgress::point_started(const SweepTask& task, int index, double frequency_hz) {
     if (!sink_) return;
     std::ostringstream out;
-    out << "  start " << task.prepared->arrangement.name << ' ' << number_text(task.level_g)
-        << " g " << std::fixed << std::setprecision(3) << frequency_hz << " Hz (";
+    out << "  start " << task.prepared->arrangement.name << ' ' << number_text(task.level_g) << ' '
+        << task.level_unit << ' ' << std::fixed << std::setprecision(3) << frequency_hz << " Hz (";
     const auto planned = static_cast<int>(task.frequencies_hz.size());
     if (index < planned) {
         out << "frequency " << index + 1 << " of " << planned << ")";
@@ -220,11 +221,11 @@ void CampaignProgress::point_finished(const SweepTask& task, double frequency_hz
     const double eta = elapsed / simulated * (points_total_ - done);
     std::ostringstream out;
     out << '[' << done << '/' << points_total_ << "] " << task.prepared->arrangement.name << ' '
-        << number_text(task.level_g) << " g " << std::fixed << std::setprecision(3) << frequency_hz
-        << " Hz: " << control::to_string(result.status) << " after " << result.periods_simulated
-        << " periods (" << result.updates << " updates), " << std::setprecision(1)
-        << static_cast<double>(periods_.load()) / std::max(elapsed, 1e-9) << " periods/s, ETA "
-        << format_duration(eta);
+        << number_text(task.level_g) << ' ' << task.level_unit << ' ' << std::fixed
+        << std::setprecision(3) << frequency_hz << " Hz: " << control::to_string(result.status)
+        << " after " << result.periods_simulated << " periods (" << result.updates << " updates), "
+        << std::setprecision(1) << static_cast<double>(periods_.load()) / std::max(elapsed, 1e-9)
+        << " periods/s, ETA " << format_duration(eta);
     std::lock_guard<std::mutex> lock(mutex_);
     sink_(out.str());
 }
@@ -315,6 +316,11 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
         return shaker.on() ? blocked_force_per_volt(shaker, f) : std::complex<double>(1.0);
     };
     SpecimenPlant plant(specimen, series_samples, campaign.scale_response_on_update, energy);
+    // A fixed drive: the sweep's level is its amplitude (no controller, no target).
+    const bool fixed = campaign.drive.fixed();
+    const auto fixed_amplitude = [&](double f) {
+        return campaign.drive.excitation_amplitude(task.level_g, f);
+    };
     const double target_rms = g_to_m_s2(task.level_g);
     const auto linear_gain = [&](double f) {
         return linear_response_per_unit_input(prepared.estimate_model, prepared.estimate_basis,
@@ -344,7 +350,8 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
         progress.points_resumed(checkpoint.points_done);
     } else {
         // First point: the linear steady state at the first frequency, settled particles.
-        const double start = campaign.controller.initial_amplitude
+        const double start = fixed ? fixed_amplitude(frequencies.front())
+                             : campaign.controller.initial_amplitude
                                  ? *campaign.controller.initial_amplitude
                                  : std::sqrt(2.0) * target_rms / linear_gain(frequencies.front());
         specimen.set_frequency(frequencies.front());
@@ -385,6 +392,7 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
                             std::abs(*predicted * force_per_drive(f)) *
                             std::abs(force_per_drive(previous_f));
                 }
+                if (fixed) start = fixed_amplitude(f);
                 using Start = CampaignSpec::PointStart;
                 if (campaign.point_start == Start::linear_steady_state) {
                     specimen.start_from_linear_steady_state(start, 0.0);
@@ -396,10 +404,13 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
                 }
             }
             progress.point_started(task, i, f);
-            control::AmplitudeController controller(campaign.controller);
-            controller.set_start_amplitude(start);
             plant.begin_point();
-            const control::PointResult result = controller.run_point(plant, f, target_rms);
+            const control::PointResult result = [&] {
+                if (fixed) return control::run_fixed_point(plant, f, start, campaign.controller);
+                control::AmplitudeController controller(campaign.controller);
+                controller.set_start_amplitude(start);
+                return controller.run_point(plant, f, target_rms);
+            }();
             const WindowChannels window = plant.window(result.window_begin, result.window_end);
 
             identification::PointRow row;
@@ -457,8 +468,9 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
         if (verdict.resolved || !task.refine) break;
         if (verdict.add_hz.empty()) {
             const std::string line = prepared.arrangement.name + " " + number_text(task.level_g) +
-                                     " g: estimates unresolved after " + std::to_string(added) +
-                                     " added frequencies (" + verdict.unresolved_reason + ")";
+                                     " " + task.level_unit + ": estimates unresolved after " +
+                                     std::to_string(added) + " added frequencies (" +
+                                     verdict.unresolved_reason + ")";
             out.settings.push_back(line);
             progress.note(line);
             break;

@@ -73,6 +73,8 @@ std::string_view to_string(PointStatus status) {
             return "limit-cycle-2";
         case PointStatus::kClosest:
             return "closest";
+        case PointStatus::kUnsettled:
+            return "unsettled";
     }
     return "unknown";
 }

@@ -14,9 +14,10 @@ enum class PointStatus {
     kConverged,    ///< a single settled level within tolerance of the target
     kLimitCycle2,  ///< a two-period limit cycle whose two-period mean is within tolerance
     kClosest,      ///< budget spent; the amplitude closest to the target was re-run
+    kUnsettled,    ///< fixed drive: budget spent before the response was steady
 };
 
-/// "converged", "limit-cycle-2" or "closest".
+/// "converged", "limit-cycle-2", "closest" or "unsettled".
 std::string_view to_string(PointStatus status);
 
 /// What a window of per-period RMS values was judged to be when the controller acted on it.

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <limits>
 #include <numeric>
+#include <optional>
 
 namespace sb::control {
 namespace {
@@ -97,9 +98,9 @@ bool phasors_within(std::span<const std::complex<double>> phasors, std::size_t c
     return spread <= tolerance * largest;
 }
 
-WindowVerdict assess_window(std::span<const double> values, double target_rms,
-                            const ControllerOptions& options,
-                            std::span<const std::complex<double>> fundamentals) {
+std::optional<WindowVerdict> assess_steady(std::span<const double> values,
+                                           const ControllerOptions& options,
+                                           std::span<const std::complex<double>> fundamentals) {
     const auto n = static_cast<std::size_t>(options.window_periods);
     const double tol = options.tolerance;
     const std::size_t m = std::min(values.size(), n);
@@ -114,11 +115,12 @@ WindowVerdict assess_window(std::span<const double> values, double target_rms,
     if (m == n && within(w, 0, 1, tol) && phase_steady) {
         const double level = mean(w);
         if (!drift.monotone) {
-            return {WindowState::kSettled, level, static_cast<int>(m), level};
+            return WindowVerdict{WindowState::kSettled, level, static_cast<int>(m), level};
         }
         if (std::abs(drift.remaining) <= kSettledDriftShare * tol * level) {
             const double steady = drift.decaying ? w.back() + drift.remaining : level;
-            return {WindowState::kSettled, steady, static_cast<int>(m), level, drift.decaying};
+            return WindowVerdict{WindowState::kSettled, steady, static_cast<int>(m), level,
+                                 drift.decaying};
         }
     }
     // Two-period limit cycle: consecutive values clearly apart and every other value within
@@ -132,9 +134,21 @@ WindowVerdict assess_window(std::span<const double> values, double target_rms,
         const double jump = std::abs(a - b) / std::max(a, b);
         if (jump >= options.limit_cycle_jump * tol && within(c, 0, 2, tol) &&
             within(c, 1, 2, tol)) {
-            return {WindowState::kLimitCycle2, mean(c), static_cast<int>(l), mean(c)};
+            return WindowVerdict{WindowState::kLimitCycle2, mean(c), static_cast<int>(l), mean(c)};
         }
     }
+    return std::nullopt;
+}
+
+WindowVerdict assess_window(std::span<const double> values, double target_rms,
+                            const ControllerOptions& options,
+                            std::span<const std::complex<double>> fundamentals) {
+    if (auto steady = assess_steady(values, options, fundamentals)) return *steady;
+    const auto n = static_cast<std::size_t>(options.window_periods);
+    const double tol = options.tolerance;
+    const std::size_t m = std::min(values.size(), n);
+    const auto w = values.subspan(values.size() - m, m);  // newest m values, oldest first
+    const Drift drift = assess_drift(w, options.drift_horizon_periods);
 
     if (m >= static_cast<std::size_t>(options.early_periods)) {
         // Early decision: every value beyond the target by more than the tolerance, unless

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <complex>
+#include <optional>
 #include <span>
 
 #include "control/options.hpp"
@@ -46,6 +47,13 @@ struct Drift {
 /// The drift of `values` (oldest first, at least 3); a horizon of 0 disables it (never
 /// monotone).
 [[nodiscard]] Drift assess_drift(std::span<const double> values, int horizon_periods);
+
+/// The steady part of assess_window, without a target: a settled window or a two-period
+/// cycle among `values` (oldest first, transient already skipped), or nothing. A fixed drive
+/// (no controller) records a point once this holds.
+[[nodiscard]] std::optional<WindowVerdict> assess_steady(
+    std::span<const double> values, const ControllerOptions& options,
+    std::span<const std::complex<double>> fundamentals = {});
 
 /// Judges `values` (per-period RMS since the last change, transient already skipped, oldest
 /// first; only the newest window_periods count; no unfilled slot votes) against `target_rms`.

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -81,6 +82,11 @@ struct ContactOptions {
     PairProperties particle_particle{};
     PairProperties particle_wall{};
     Material wall_material{};  ///< enclosure material (Hertz walls)
+    /// Particle-rod coefficients of the obstacle grid, whose lattice need not be of the walls'
+    /// material (paper 002's 3.3 g grid is a printed lattice, its shell metal); absent: the
+    /// particle-wall ones.
+    std::optional<PairProperties> particle_rod;
+    std::optional<Material> rod_material;  ///< rod material (Hertz); absent: wall_material
     Violations validate() const;
 };
 

@@ -313,7 +313,9 @@ ParticleSet pour(const SolverOptions& options, std::uint64_t seed, const SettleO
         bed.angular_velocities_rad_s.resize(now, Eigen::Vector3d::Zero());
         SolverOptions o = options;
         o.particles.count = static_cast<int>(now);
-        for (PairProperties* pair : {&o.contact.particle_particle, &o.contact.particle_wall}) {
+        for (PairProperties* pair : {&o.contact.particle_particle, &o.contact.particle_wall,
+                                     o.contact.particle_rod ? &*o.contact.particle_rod : nullptr}) {
+            if (pair == nullptr) continue;
             pair->sliding_friction *= po.friction_scale;
             pair->rolling_friction *= po.friction_scale;
         }

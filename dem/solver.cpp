@@ -94,17 +94,20 @@ Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
     layers_up_ = enclosure.rotation.transpose() * (-options_.gravity_m_s2);
     layers_ = HorizontalLayers(enclosure_, layers_up_, options_.energy_layers);
 
-    // Pair coefficients: [0] particle-particle, [1] particle-wall.
+    // Pair coefficients: [0] particle-particle, [1] particle-wall, [2] particle-rod (the
+    // wall's unless the rods have their own).
     const auto& c = options_.contact;
     const Material& pm = options_.particles.material;
     const Material& wm = c.wall_material;
+    const Material& rm = c.rod_material ? *c.rod_material : wm;
     auto e_star = [](const Material& a, const Material& b) {
         return 1.0 / ((1.0 - a.poisson_ratio * a.poisson_ratio) / a.youngs_modulus_pa +
                       (1.0 - b.poisson_ratio * b.poisson_ratio) / b.youngs_modulus_pa);
     };
-    const PairProperties* props[2] = {&c.particle_particle, &c.particle_wall};
-    const Material* other[2] = {&pm, &wm};
-    for (int k = 0; k < 2; ++k) {
+    const PairProperties* props[3] = {&c.particle_particle, &c.particle_wall,
+                                      c.particle_rod ? &*c.particle_rod : &c.particle_wall};
+    const Material* other[3] = {&pm, &wm, &rm};
+    for (int k = 0; k < 3; ++k) {
         PairCoefficients& p = coeff_[k];
         p.mu = props[k]->sliding_friction;
         p.mu_r = props[k]->rolling_friction;
@@ -112,7 +115,7 @@ Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
         p.slip_reg = c.slip_regularisation_m_s;
         p.e_star_sqrt_factor = 4.0 / 3.0 * e_star(pm, *other[k]);
         p.k_n = c.normal_stiffness;
-        if (k == 1 && c.normal == NormalLaw::hooke && c.wall_normal_stiffness > 0.0) {
+        if (k >= 1 && c.normal == NormalLaw::hooke && c.wall_normal_stiffness > 0.0) {
             p.k_n = c.wall_normal_stiffness;
         }
         p.damping =
@@ -520,7 +523,8 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
     std::uint32_t count = 0;
     if (!deep_inside(xl, ri)) {
         const std::size_t base = i * wall_cap_;
-        const PairCoefficients& p = coeff_[1];
+        const PairCoefficients& wall_coefficients = coeff_[1];
+        const PairCoefficients& rod_coefficients = coeff_[2];
         const std::uint32_t prev_count = prev_wall_count_[i];
         std::uint32_t prev = 0;
         enclosure_.for_each_contact(
@@ -555,7 +559,8 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
                 const double vn = vrel.dot(n);
                 k.delta_dot = -vn;
                 k.v_t = vrel - vn * n;
-                const LawForce r = law.evaluate(k, p, hist);
+                const LawForce r =
+                    law.evaluate(k, wall >= kRodBase ? rod_coefficients : wall_coefficients, hist);
                 const Eigen::Vector3d f = r.fn * n + r.ft;
                 const Eigen::Vector3d ti = bi.cross(r.ft) + r.mr;
                 wall_delta_[s] = delta;

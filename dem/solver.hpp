@@ -193,7 +193,7 @@ class Solver {
     SolverOptions options_;
     Enclosure enclosure_;
     ContactLaw law_;
-    PairCoefficients coeff_[2];
+    PairCoefficients coeff_[3];  ///< particle-particle, particle-wall, particle-rod
     EnclosureState enclosure_state_;
     HorizontalLayers layers_;
     Eigen::Vector3d layers_up_ = Eigen::Vector3d::Zero();  ///< what layers_ was built from

@@ -67,9 +67,10 @@ std::string level_title(double level_g) {
     return buf;
 }
 
-/// "1 g", or "1 g, filling 2" for the second and later fillings of the bed.
-std::string block_title(const LevelIdentification& l) {
-    std::string title = level_title(l.level_g) + " g";
+/// "1 g", or "1 g, filling 2" for the second and later fillings of the bed (a fixed drive's
+/// level in its own unit: "0.2 V").
+std::string block_title(const LevelIdentification& l, const std::string& unit) {
+    std::string title = level_title(l.level_g) + " " + unit;
     if (l.filling > 0) title += ", filling " + std::to_string(l.filling);
     return title;
 }
@@ -128,7 +129,7 @@ PlotResult write_plots(const fs::path& out_dir, const std::vector<LevelIdentific
         for (std::size_t b = 0; b < items.size(); ++b) {
             const auto* l = items[b];
             if (b > 0) frf << "\n\n";
-            frf << "# level " << block_title(*l) << '\n';
+            frf << "# level " << block_title(*l, options.level_unit) << '\n';
             for (std::size_t i = 0; i < l->frf.frequency_hz.size(); ++i) {
                 const auto v = l->frf.value[i];
                 frf << number(l->frf.frequency_hz[i]) << ' ' << number(std::abs(v)) << ' '
@@ -181,12 +182,14 @@ PlotResult write_plots(const fs::path& out_dir, const std::vector<LevelIdentific
            << "\nset ylabel " << quoted("|" + form + "|") << "\nset logscale y\nplot ";
         for (std::size_t b = 0; b < items.size(); ++b) {
             gp << (b ? ", " : "") << quoted(frf_file.filename().string()) << " index " << b
-               << " using 1:2 with linespoints title " << quoted(block_title(*items[b]));
+               << " using 1:2 with linespoints title "
+               << quoted(block_title(*items[b], options.level_unit));
         }
         gp << "\nunset logscale y\nset ylabel 'phase [deg]'\nset xlabel 'frequency [Hz]'\nplot ";
         for (std::size_t b = 0; b < items.size(); ++b) {
             gp << (b ? ", " : "") << quoted(frf_file.filename().string()) << " index " << b
-               << " using 1:3 with linespoints title " << quoted(block_title(*items[b]));
+               << " using 1:3 with linespoints title "
+               << quoted(block_title(*items[b], options.level_unit));
         }
         gp << "\nunset multiplot\nunset xlabel\n";
         result.svg.push_back(frf_svg);

@@ -13,6 +13,8 @@ namespace sb::identification {
 struct PlotOptions {
     /// Label of the level axis of the damping plot (a UFF file's records are numbered).
     std::string level_axis = "level [g RMS]";
+    /// Unit of a level in the FRF plot's curve titles ("g"; a fixed drive's "V", "N", ...).
+    std::string level_unit = "g";
     /// Run gnuplot when it is on PATH; false only writes the data and the script.
     bool render = true;
 };

@@ -59,10 +59,12 @@ struct ChannelValue {
 
 /// One row of points.csv.
 struct PointRow {
-    std::string arrangement;    ///< e.g. "H-0"
-    double level_g = 0.0;       ///< target RMS level [g]
+    std::string arrangement;  ///< e.g. "H-0"
+    /// Target RMS level [g]; under a fixed drive the drive's peak amplitude in its own unit
+    /// (N, m/s^2, m or V: docs/campaign.md).
+    double level_g = 0.0;
     double frequency_hz = 0.0;  ///< excitation frequency [Hz]
-    /// converged | limit-cycle-2 | closest | measured (a run or a lab); predicted |
+    /// converged | limit-cycle-2 | closest | unsettled | measured (a run or a lab); predicted |
     /// extrapolated | uncertain (`shakerbench predict`, docs/characterisation.md)
     std::string status;
     std::string series;                ///< time history path relative to the directory, or empty
@@ -97,15 +99,18 @@ struct DampingRow {
 };
 
 /// Every status a points.csv row may have, in the order messages list them.
-inline constexpr const char* kPointStatuses[] = {
-    "converged", "limit-cycle-2", "closest", "measured", "predicted", "extrapolated", "uncertain"};
+inline constexpr const char* kPointStatuses[] = {"converged",    "limit-cycle-2", "closest",
+                                                 "unsettled",    "measured",      "predicted",
+                                                 "extrapolated", "uncertain"};
 
-/// True for the statuses of points that did not hold their level (`closest`) or whose
+/// True for the statuses of points that did not hold their level (`closest`), did not settle
+/// at a fixed drive (`unsettled`: their window is a long mean), or whose
 /// prediction is not to be trusted (`extrapolated`: outside the characterised grid;
 /// `uncertain`: not converged, unsettled characterisation, strongly non-harmonic): left out
 /// of the fits unless asked for (IdentifyOptions::closest).
 inline bool left_out_of_fits_by_default(const std::string& status) {
-    return status == "closest" || status == "extrapolated" || status == "uncertain";
+    return status == "closest" || status == "unsettled" || status == "extrapolated" ||
+           status == "uncertain";
 }
 
 /// A whole recording directory.

@@ -77,6 +77,29 @@ TEST(ConfigPaths, WallFrictionFollowsAParticleFrictionChangedAfterLoading) {
     EXPECT_EQ(config.campaign.dampers.front().contact.particle_wall().sliding_friction, 0.2);
 }
 
+TEST(ConfigPaths, RodsFollowTheWallsUntilGivenTheirOwnMaterial) {
+    CampaignConfig config = builtin();
+    const auto& contact = config.campaign.dampers.front().contact;
+    EXPECT_FALSE(contact.particle_rod());  // the wall's coefficients serve the rods
+    EXPECT_FALSE(contact.rod_material());
+    set_value_text(config, "dampers.pd.contact.wall_restitution", "0.7", "--set");
+    EXPECT_EQ(std::get<double>(get_value(config, "dampers.pd.contact.rod_restitution")), 0.7);
+    set_value_text(config, "dampers.pd.contact.rod_restitution", "0.4", "--set");
+    set_value_text(config, "dampers.pd.contact.rod_youngs_modulus_pa", "3e9", "--set");
+    const auto options = contact.contact_options(1e4);
+    ASSERT_TRUE(options.particle_rod);
+    EXPECT_EQ(options.particle_rod->restitution, 0.4);
+    // What is not given follows the wall's.
+    EXPECT_EQ(options.particle_rod->sliding_friction, options.particle_wall.sliding_friction);
+    ASSERT_TRUE(options.rod_material);
+    EXPECT_EQ(options.rod_material->youngs_modulus_pa, 3e9);
+    EXPECT_EQ(options.rod_material->poisson_ratio, options.wall_material.poisson_ratio);
+    EXPECT_EQ(options.particle_wall.restitution, 0.7);
+    EXPECT_FALSE(errors_of([&] {
+                     set_value_text(config, "dampers.pd.contact.rod_restitution", "1.5", "--set");
+                 }).empty());
+}
+
 TEST(ConfigPaths, TheDiameterScatterIsAddressedByItsDottedPathWithinItsBound) {
     CampaignConfig config = builtin();
     const std::string path = "dampers.pd.particles.diameter_scatter";

@@ -1,0 +1,92 @@
+// The fixed-drive point: periods at one amplitude until the response is steady.
+#include "control/fixed_drive.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "control/window.hpp"
+
+namespace sb::control {
+
+PointResult run_fixed_point(Plant& plant, double frequency_hz, double amplitude,
+                            const ControllerOptions& options) {
+    if (const Violations violations = options.validate(); !violations.empty()) {
+        std::string text = "invalid controller options:";
+        for (const auto& v : violations)
+            text += "\n  " + v.key + " = " + v.value + ": " + v.constraint;
+        throw std::invalid_argument(text);
+    }
+    if (!(std::isfinite(frequency_hz) && frequency_hz > 0.0)) {
+        throw std::invalid_argument("run_fixed_point: frequency_hz must be > 0, got " +
+                                    format_value(frequency_hz));
+    }
+    if (!(std::isfinite(amplitude) && amplitude > 0.0)) {
+        throw std::invalid_argument("run_fixed_point: amplitude must be > 0, got " +
+                                    format_value(amplitude));
+    }
+    PointResult result;
+    result.frequency_hz = frequency_hz;
+    result.amplitudes_tried.push_back(amplitude);
+    result.amplitude_final = amplitude;
+    std::vector<double> window;  // RMS after the transient, oldest first
+    std::vector<std::complex<double>> phasors;
+    while (result.periods_simulated < options.max_periods) {
+        PeriodResult period = plant.run_period(amplitude, frequency_hz);
+        if (!(std::isfinite(period.rms) && period.rms >= 0.0)) {
+            throw std::runtime_error("control: plant reported RMS " + format_value(period.rms) +
+                                     " at period " + std::to_string(result.periods_simulated) +
+                                     ", frequency " + format_value(frequency_hz) +
+                                     " Hz, fixed amplitude " + format_value(amplitude));
+        }
+        const double rms = period.rms;
+        const bool has_phasor = !period.harmonics.empty();
+        const std::complex<double> fundamental =
+            has_phasor ? period.harmonics.front() : std::complex<double>();
+        result.amplitude_per_period.push_back(amplitude);
+        result.rms_per_period.push_back(rms);
+        result.periods.push_back(std::move(period));
+        ++result.periods_simulated;
+        if (result.periods_simulated <= options.transient_periods) continue;
+        window.push_back(rms);
+        if (options.phase_test && has_phasor) phasors.push_back(fundamental);
+        const auto verdict = assess_steady(window, options,
+                                           phasors.size() == window.size()
+                                               ? std::span<const std::complex<double>>(phasors)
+                                               : std::span<const std::complex<double>>());
+        if (!verdict) continue;
+        Decision decision;
+        decision.period = result.periods_simulated - 1;
+        decision.amplitude = amplitude;
+        decision.level = verdict->level;
+        decision.kind = verdict->state == WindowState::kSettled ? DecisionKind::kSettled
+                                                                : DecisionKind::kLimitCycle2;
+        decision.next_amplitude = amplitude;
+        result.decisions.push_back(decision);
+        result.status = verdict->state == WindowState::kSettled ? PointStatus::kConverged
+                                                                : PointStatus::kLimitCycle2;
+        result.rms_final = verdict->mean;
+        result.window_end = result.periods_simulated;
+        result.window_begin = result.window_end - verdict->count;
+        return result;
+    }
+    // Never steady: the long mean is the estimate (a chaotic response scatters about it).
+    const int after_transient = static_cast<int>(window.size());
+    const int recorded =
+        std::min(after_transient, std::max(options.window_periods, after_transient / 2));
+    result.status = PointStatus::kUnsettled;
+    result.window_end = result.periods_simulated;
+    result.window_begin = result.window_end - std::max(recorded, 1);
+    double sum = 0.0;
+    for (int p = result.window_begin; p < result.window_end; ++p) {
+        sum += result.rms_per_period[static_cast<std::size_t>(p)];
+    }
+    result.rms_final = sum / static_cast<double>(result.window_end - result.window_begin);
+    return result;
+}
+
+}  // namespace sb::control
