@@ -474,7 +474,7 @@ std::shared_ptr<const config::Table> shaker_table() {
     t.number(
          "armature_mass_kg", [](ShakerSpec & s) -> auto& { return s.armature_mass_kg; },
          "moving mass of the armature, its table and the stinger, added to the structure at "
-         "the drive point (a beam or lumped structure)")
+         "the drive point (on an imported model: to the point's translation DOFs)")
         .unit("kg")
         .bound(Bound::non_negative())
         .calibrated_within(0.0, 10.0)
@@ -639,13 +639,6 @@ std::shared_ptr<const config::Table> build_campaign_schema() {
                            "needs a force-excited structure (structure.excitation.kind = "
                            "\"force\")",
                            "the shaker drives the structure's excitation point through a stinger"});
-        }
-        if (shaker.on() && shaker.armature_mass_kg > 0.0 &&
-            c.structure.kind == structure::StructureSpec::Kind::matrix) {
-            out.push_back({"physics.shaker.armature_mass_kg",
-                           config::number_text(shaker.armature_mass_kg),
-                           "needs a beam or lumped structure",
-                           "an imported model takes the armature's mass in its mass matrix"});
         }
         return out;
     });
