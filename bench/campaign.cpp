@@ -73,8 +73,10 @@ id::Recording campaign_recording(const CampaignConfig& config,
         rec.channels.push_back(
             {"force", "force", "N", excitation.point, id::ChannelRole::reference});
     } else {
-        rec.channels.push_back(
-            {"base_acc", "acceleration", "m/s^2", excitation.support, id::ChannelRole::reference});
+        // An imported model has no support to name: its base is "base".
+        rec.channels.push_back({"base_acc", "acceleration", "m/s^2",
+                                excitation.support.empty() ? "base" : excitation.support,
+                                id::ChannelRole::reference});
     }
     for (std::size_t i = 0; i < channel_points.size(); ++i) {
         rec.channels.push_back({"acc_" + channel_points[i], "acceleration", "m/s^2",

@@ -46,7 +46,7 @@ double point_position_m(const structure::StructureSpec& spec, const std::string&
 }
 
 /// Adds a rigid mass at a damper's point (beam: a lumped mass with its centre offset;
-/// lumped model: added to the named mass).
+/// lumped model: added to the named mass; imported model: a mass at the named point).
 void add_mass(structure::StructureSpec& spec, const std::string& point, const std::string& name,
               double mass_kg, const Eigen::Vector3d& offset_m) {
     using Kind = structure::StructureSpec::Kind;
@@ -62,9 +62,12 @@ void add_mass(structure::StructureSpec& spec, const std::string& point, const st
             if (m.name == point) m.mass_kg += mass_kg;
         }
     } else {
-        throw std::runtime_error(
-            "rigid dampers and mounting blocks need a beam or lumped structure, not imported "
-            "matrices (add their mass to the matrices instead)");
+        structure::PointMass m;
+        m.name = name;
+        m.point = point;
+        m.mass_kg = mass_kg;
+        m.offset_m = offset_m;
+        spec.matrix.masses.push_back(m);
     }
 }
 

@@ -514,7 +514,7 @@ std::shared_ptr<const config::Table> shaker_table() {
     t.number(
          "armature_mass_kg", [](ShakerSpec & s) -> auto& { return s.armature_mass_kg; },
          "moving mass of the armature, its table and the stinger, added to the structure at "
-         "the drive point (a beam or lumped structure)")
+         "the drive point (on an imported model: to the point's translation DOFs)")
         .unit("kg")
         .bound(Bound::non_negative())
         .calibrated_within(0.0, 10.0)
@@ -572,7 +572,7 @@ std::vector<std::string> point_names(const structure::StructureSpec& spec) {
             break;
         case structure::StructureSpec::Kind::matrix:
             for (const auto& [dof, row] : spec.matrix.named_dofs) {
-                names.push_back(dof.substr(0, dof.rfind('.')));
+                names.push_back(structure::MatrixSpec::point_of(dof));
             }
             break;
     }
@@ -703,13 +703,6 @@ std::shared_ptr<const config::Table> build_campaign_schema() {
             out.push_back({"campaign.drive.quantity", "\"base-displacement\"",
                            "needs base excitation (structure.excitation.kind = \"base\")",
                            "what a fixed amplitude is"});
-        }
-        if (shaker.on() && shaker.armature_mass_kg > 0.0 &&
-            c.structure.kind == structure::StructureSpec::Kind::matrix) {
-            out.push_back({"physics.shaker.armature_mass_kg",
-                           config::number_text(shaker.armature_mass_kg),
-                           "needs a beam or lumped structure",
-                           "an imported model takes the armature's mass in its mass matrix"});
         }
         return out;
     });

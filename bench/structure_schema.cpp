@@ -1,6 +1,8 @@
 // The keys of [structure]: beam, lumped and imported models, damping, excitation.
+#include <algorithm>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "bench/schema_parts.hpp"
 #include "config/builder.hpp"
@@ -241,6 +243,8 @@ Violations check_matrix_files(const MatrixSpec& spec) {
     const auto stiffness =
         size_of("stiffness_file", spec.stiffness_file, "Matrix Market stiffness matrix");
     const auto rigid = size_of("rigid_body_file", spec.rigid_body_file, "rigid translations");
+    const auto influence = size_of("base_influence_file", spec.base_influence_file,
+                                   "influence vector of the base motion");
     if (mass && mass->rows != mass->cols) {
         out.push_back({"mass_file", config::quoted(spec.mass_file.string()),
                        "must hold a square matrix, holds " + shape(*mass), ""});
@@ -255,6 +259,12 @@ Violations check_matrix_files(const MatrixSpec& spec) {
                        "must hold " + std::to_string(mass->rows) + " x 3, holds " + shape(*rigid),
                        ""});
     }
+    if (mass && influence && (influence->rows != mass->rows || influence->cols != 1)) {
+        out.push_back({"base_influence_file", config::quoted(spec.base_influence_file.string()),
+                       "must hold " + std::to_string(mass->rows) +
+                           " x 1 (one value per DOF), holds " + shape(*influence),
+                       "influence vector of the base motion"});
+    }
     if (mass) {
         for (const auto& [name, row] : spec.named_dofs) {
             if (row >= mass->rows) {
@@ -265,6 +275,62 @@ Violations check_matrix_files(const MatrixSpec& spec) {
         }
     }
     return out;
+}
+
+/// Base excitation of an imported model needs its influence vector: from the file, or the
+/// rigid translation (rigid_body_file, or every row named). Keys are StructureSpec's.
+Violations check_matrix_base(const StructureSpec& spec) {
+    Violations out;
+    const MatrixSpec& m = spec.matrix;
+    if (spec.kind != StructureSpec::Kind::matrix ||
+        spec.excitation.kind != ExcitationSpec::Kind::base || !m.base_influence_file.empty() ||
+        !m.rigid_body_file.empty() || m.mass_file.empty()) {
+        return out;
+    }
+    long rows = 0;
+    try {
+        rows = structure::read_matrix_market_size(m.mass_file).rows;
+    } catch (const structure::MatrixMarketError&) {
+        return out;  // reported at mass_file
+    }
+    std::vector<bool> named(static_cast<std::size_t>(rows), false);
+    for (const auto& [name, row] : m.named_dofs) {
+        if (row >= 0 && row < rows) named[static_cast<std::size_t>(row)] = true;
+    }
+    const auto unnamed = std::count(named.begin(), named.end(), false);
+    if (unnamed > 0) {
+        out.push_back({"matrix.base_influence_file", "absent",
+                       "is required under base excitation: " + std::to_string(unnamed) + " of " +
+                           std::to_string(rows) +
+                           " rows are not named and there is no rigid_body_file, so the rigid "
+                           "translation along the excitation direction is unknown",
+                       "influence vector of the base motion"});
+    }
+    return out;
+}
+
+std::shared_ptr<const config::Table> point_mass_table() {
+    TableBuilder<structure::PointMass> t(
+        "masses added to the imported model",
+        "A rigid mass added at a named point of the imported model (an enclosure, a sensor); "
+        "repeat the table for each mass.");
+    t.string(
+         "name", [](structure::PointMass & m) -> auto& { return m.name; }, "label of the mass")
+        .follows("point");
+    t.string(
+         "point", [](structure::PointMass & m) -> auto& { return m.point; },
+         "the named point the mass is attached to")
+        .required()
+        .doc(
+            "the named point (of `[structure.matrix.dofs]`) the mass is attached to: it adds to "
+            "the point's translation DOFs (`p.x`, `p.y`, `p.z`, or the single DOF of a name "
+            "without suffix)");
+    t.number(
+         "mass_kg", [](structure::PointMass & m) -> auto& { return m.mass_kg; }, "mass")
+        .unit("kg")
+        .bound(Bound::positive())
+        .required();
+    return t.build();
 }
 
 std::shared_ptr<const config::Table> matrix_table() {
@@ -290,7 +356,18 @@ std::shared_ptr<const config::Table> matrix_table() {
         .optional()
         .doc(
             "n x 3 matrix whose column d holds every DOF's value in a unit rigid translation "
-            "along x, y, z (0 for rotations); used for the effective masses");
+            "along x, y, z (0 for rotations); used for the effective masses and, under base "
+            "excitation without `base_influence_file`, for the influence vector");
+    t.file(
+         "base_influence_file", [](MatrixSpec & m) -> auto& { return m.base_influence_file; },
+         "influence vector of the base motion")
+        .optional()
+        .doc(
+            "n x 1 matrix: every DOF's displacement per unit base displacement along the "
+            "excitation direction (the quasi-static influence vector r of M y'' + C y' + K y = "
+            "-M r a_base); absent: the rigid translation along that direction, from "
+            "`rigid_body_file` or from the names when every row is named. Only for "
+            "`excitation.kind = \"base\"`");
     Declaration row;
     row.type = config::Type::integer;
     row.bound = Bound::non_negative();
@@ -304,6 +381,8 @@ std::shared_ptr<const config::Table> matrix_table() {
          [](std::pair<std::string, int> & d) -> auto& { return d.first; },
          [](std::pair<std::string, int> & d) -> auto& { return d.second; }, row, "named DOFs")
         .leaf("named_dofs");
+    t.array_of_tables(
+        "masses", [](MatrixSpec & m) -> auto& { return m.masses; }, point_mass_table());
     t.check([](const MatrixSpec& m) { return check_matrix_files(m); });
     return t.build();
 }
@@ -353,7 +432,7 @@ std::shared_ptr<const config::Table> excitation_table() {
          "how the structure is driven")
         .doc(
             "a force at a named point (shaker with load cell), or prescribed motion of a "
-            "support (relative coordinates)");
+            "support or of an imported model's base (relative coordinates)");
     t.string(
          "point", [](ExcitationSpec & e) -> auto& { return e.point; },
          "the named point the shaker drives")
@@ -362,7 +441,12 @@ std::shared_ptr<const config::Table> excitation_table() {
               "only for kind = \"force\"", true);
     t.string(
          "support", [](ExcitationSpec & e) -> auto& { return e.support; }, "the support that moves")
-        .required()
+        .optional()
+        .doc(
+            "the support that moves: a support of `[structure.beam.supports]`, or \"ground\" for "
+            "a lumped model (required for both); absent for an imported model, which has no "
+            "supports (`structure.matrix.base_influence_file` or its rigid translation says how "
+            "it follows the base)")
         .when([](const ExcitationSpec& e) { return e.kind == ExcitationSpec::Kind::base; },
               "only for kind = \"base\"", true);
     t.vector3(
@@ -416,7 +500,12 @@ std::shared_ptr<const config::Table> structure_table() {
         "damping", [](StructureSpec & s) -> auto& { return s.damping; }, damping_table());
     t.table(
         "excitation", [](StructureSpec & s) -> auto& { return s.excitation; }, excitation_table());
-    t.check([](const StructureSpec& s) { return s.validate(); });
+    t.check([](const StructureSpec& s) {
+        Violations out = s.validate();
+        const Violations base = check_matrix_base(s);
+        out.insert(out.end(), base.begin(), base.end());
+        return out;
+    });
     return t.build();
 }
 

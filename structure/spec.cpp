@@ -176,12 +176,34 @@ Violations MatrixSpec::validate() const {
             {"stiffness_file", "\"\"", "must name a file", "Matrix Market stiffness matrix"});
     }
     std::set<std::string> names;
+    std::set<std::string> points;
     for (const auto& [name, index] : named_dofs) {
         const std::string key = "named_dofs." + name;
         require_unique(out, names, key, name, "named DOF");
         require_at_least(out, key, index, 0, "zero-based row of the named DOF");
+        points.insert(point_of(name));
+    }
+    for (std::size_t i = 0; i < masses.size(); ++i) {
+        const auto& m = masses[i];
+        const std::string key = "masses[" + std::to_string(i) + "]";
+        if (!points.contains(m.point)) {
+            out.push_back({key + ".point", "\"" + m.point + "\"",
+                           "must name a point of [structure.matrix.dofs]",
+                           "named point the mass is attached to"});
+        }
+        require_positive(out, key + ".mass_kg", m.mass_kg, "added mass [kg]");
     }
     return out;
+}
+
+std::string MatrixSpec::point_of(const std::string& dof) {
+    const auto dot = dof.rfind('.');
+    if (dot == std::string::npos) return dof;
+    const std::string suffix = dof.substr(dot + 1);
+    for (const char* c : {"x", "y", "z", "rx", "ry", "rz"}) {
+        if (suffix == c) return dof.substr(0, dot);
+    }
+    return dof;
 }
 
 Violations DampingSpec::validate() const {
@@ -230,9 +252,6 @@ Violations ExcitationSpec::validate() const {
     if (kind == Kind::force && point.empty()) {
         out.push_back({"point", "\"\"", "must name a point", "where the force acts"});
     }
-    if (kind == Kind::base && support.empty()) {
-        out.push_back({"support", "\"\"", "must name a support", "the support that moves"});
-    }
     return out;
 }
 
@@ -260,8 +279,7 @@ Violations StructureSpec::validate() const {
         case Kind::matrix:
             append_prefixed(out, "matrix", matrix.validate());
             for (const auto& [name, index] : matrix.named_dofs) {
-                const auto dot = name.rfind('.');
-                point_names.insert(dot == std::string::npos ? name : name.substr(0, dot));
+                point_names.insert(MatrixSpec::point_of(name));
             }
             break;
     }
@@ -272,11 +290,26 @@ Violations StructureSpec::validate() const {
         out.push_back({"excitation.point", excitation.point, "must name a point of the structure",
                        "where the force acts"});
     }
-    if (excitation.kind == ExcitationSpec::Kind::base && !excitation.support.empty() &&
-        !support_names.contains(excitation.support)) {
-        out.push_back({"excitation.support", excitation.support,
+    const bool base = excitation.kind == ExcitationSpec::Kind::base;
+    if (base && kind == Kind::matrix) {
+        // An imported model has no supports: its base DOFs were constrained out of the
+        // matrices, and the influence vector r says how the free DOFs follow the base.
+        if (!excitation.support.empty()) {
+            out.push_back({"excitation.support", excitation.support,
+                           "must be absent for an imported model (kind = \"matrix\"): "
+                           "structure.matrix.base_influence_file or the rigid translation "
+                           "gives how it follows the base",
+                           "the support that moves"});
+        }
+    } else if (base && !support_names.contains(excitation.support)) {
+        out.push_back({"excitation.support", "\"" + excitation.support + "\"",
                        kind == Kind::lumped ? "must be \"ground\"" : "must name a support",
                        "the support that moves"});
+    }
+    if (kind == Kind::matrix && !base && !matrix.base_influence_file.empty()) {
+        out.push_back({"matrix.base_influence_file", matrix.base_influence_file.string(),
+                       "applies only to structure.excitation.kind = \"base\"",
+                       "influence vector of the base motion"});
     }
     if (modes < 1) {
         out.push_back({"modes", std::to_string(modes), "must be >= 1",

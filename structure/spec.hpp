@@ -96,6 +96,18 @@ struct LumpedSpec {
     [[nodiscard]] Violations validate() const;
 };
 
+/// A rigid mass added at a named point of an imported model (an enclosure, a sensor, a rigid
+/// damper, a mounting block, the shaker's armature), its centre of gravity at offset_m from the
+/// point, with rotary inertia about its own centre of gravity (principal axes = structure
+/// frame). Offset and inertia act only through the point's rotation DOFs, when it has them.
+struct PointMass {
+    std::string name;      ///< label; empty: the name of its point
+    std::string point;     ///< the named point it is attached to
+    double mass_kg = 0.0;  ///< [kg]
+    Eigen::Vector3d inertia_kg_m2 = Eigen::Vector3d::Zero();  ///< [kg m^2] about x, y, z
+    Eigen::Vector3d offset_m = Eigen::Vector3d::Zero();       ///< [m] CG offset from the point
+};
+
 /// Mass and stiffness matrices from Matrix Market files with named DOFs (paper 001's bracket).
 struct MatrixSpec {
     std::filesystem::path mass_file;
@@ -107,8 +119,17 @@ struct MatrixSpec {
     /// translation along axis d (for effective masses). Without it the rigid translations are
     /// built from the named DOFs, which is only complete when every row is named.
     std::filesystem::path rigid_body_file;
+    /// Optional n x 1 Matrix Market file for base excitation: the influence vector r, every
+    /// DOF's displacement per unit base displacement along the excitation direction. Without
+    /// it r is the rigid translation along that direction.
+    std::filesystem::path base_influence_file;
+    /// Rigid masses added at named points (from the config, and those the bench adds).
+    std::vector<PointMass> masses;
 
     [[nodiscard]] Violations validate() const;
+    /// The point a DOF name belongs to: "p" for "p.x", "p.y", "p.z", "p.rx", "p.ry", "p.rz";
+    /// the whole name otherwise (a point moving along the excitation direction).
+    [[nodiscard]] static std::string point_of(const std::string& dof);
 };
 
 /// Modal damping ratios per mode, or Rayleigh damping C = alpha M + beta K.
@@ -133,8 +154,10 @@ struct ExcitationSpec {
     static constexpr std::pair<Kind, std::string_view> kKindNames[] = {{Kind::force, "force"},
                                                                        {Kind::base, "base"}};
     Kind kind = Kind::force;
-    std::string point;                                     ///< force: named point the force acts at
-    std::string support;                                   ///< base: the support that moves
+    std::string point;  ///< force: named point the force acts at
+    /// base: the support that moves (beam: a support's name; lumped: "ground"); empty for an
+    /// imported model, whose base DOFs were constrained out of its matrices.
+    std::string support;
     Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();  ///< unit vector, structure frame
 
     [[nodiscard]] Violations validate() const;
