@@ -10,54 +10,12 @@
 #include <utility>
 #include <vector>
 
+#include "control/point_recorder.hpp"
 #include "control/update.hpp"
 #include "control/window.hpp"
 
 namespace sb::control {
 namespace {
-
-std::string join(const Violations& violations) {
-    std::string text = "invalid controller options:";
-    for (const auto& v : violations) {
-        text += "\n  " + v.key + " = " + v.value + ": " + v.constraint + " (" + v.meaning + ")";
-    }
-    return text;
-}
-
-/// Bookkeeping of one point: every period driven goes through here.
-class PointRecorder {
-  public:
-    PointRecorder(Plant& plant, double frequency_hz, double target_rms, PointResult& result)
-        : plant_(plant), frequency_hz_(frequency_hz), result_(result) {
-        result_.frequency_hz = frequency_hz;
-        result_.target_rms = target_rms;
-    }
-
-    double run(double amplitude) {
-        if (result_.amplitude_per_period.empty() ||
-            result_.amplitude_per_period.back() != amplitude) {
-            result_.amplitudes_tried.push_back(amplitude);
-        }
-        PeriodResult period = plant_.run_period(amplitude, frequency_hz_);
-        if (!(std::isfinite(period.rms) && period.rms >= 0.0)) {
-            throw std::runtime_error("control: plant reported RMS " + format_value(period.rms) +
-                                     " at period " + std::to_string(result_.periods_simulated) +
-                                     ", frequency " + format_value(frequency_hz_) +
-                                     " Hz, amplitude " + format_value(amplitude));
-        }
-        const double rms = period.rms;
-        result_.amplitude_per_period.push_back(amplitude);
-        result_.rms_per_period.push_back(rms);
-        result_.periods.push_back(std::move(period));
-        ++result_.periods_simulated;
-        return rms;
-    }
-
-  private:
-    Plant& plant_;
-    double frequency_hz_;
-    PointResult& result_;
-};
 
 bool closer(const std::optional<Sample>& best, const Sample& s, double target) {
     return !best || std::abs(s.level - target) < std::abs(best->level - target);
@@ -121,8 +79,7 @@ std::vector<std::complex<double>> PointResult::window_harmonics() const {
 }
 
 AmplitudeController::AmplitudeController(const ControllerOptions& options) : options_(options) {
-    const Violations violations = options_.validate();
-    if (!violations.empty()) throw std::invalid_argument(join(violations));
+    throw_if_invalid(options_);
 }
 
 double AmplitudeController::start_amplitude(double target_rms) const {

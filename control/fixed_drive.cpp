@@ -4,23 +4,20 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "control/point_recorder.hpp"
 #include "control/window.hpp"
 
 namespace sb::control {
 
 PointResult run_fixed_point(Plant& plant, double frequency_hz, double amplitude,
                             const ControllerOptions& options) {
-    if (const Violations violations = options.validate(); !violations.empty()) {
-        std::string text = "invalid controller options:";
-        for (const auto& v : violations)
-            text += "\n  " + v.key + " = " + v.value + ": " + v.constraint;
-        throw std::invalid_argument(text);
-    }
+    throw_if_invalid(options);
     if (!(std::isfinite(frequency_hz) && frequency_hz > 0.0)) {
         throw std::invalid_argument("run_fixed_point: frequency_hz must be > 0, got " +
                                     format_value(frequency_hz));
@@ -30,30 +27,16 @@ PointResult run_fixed_point(Plant& plant, double frequency_hz, double amplitude,
                                     format_value(amplitude));
     }
     PointResult result;
-    result.frequency_hz = frequency_hz;
-    result.amplitudes_tried.push_back(amplitude);
+    PointRecorder recorder(plant, frequency_hz, 0.0, result);
     result.amplitude_final = amplitude;
     std::vector<double> window;  // RMS after the transient, oldest first
     std::vector<std::complex<double>> phasors;
     while (result.periods_simulated < options.max_periods) {
-        PeriodResult period = plant.run_period(amplitude, frequency_hz);
-        if (!(std::isfinite(period.rms) && period.rms >= 0.0)) {
-            throw std::runtime_error("control: plant reported RMS " + format_value(period.rms) +
-                                     " at period " + std::to_string(result.periods_simulated) +
-                                     ", frequency " + format_value(frequency_hz) +
-                                     " Hz, fixed amplitude " + format_value(amplitude));
-        }
-        const double rms = period.rms;
-        const bool has_phasor = !period.harmonics.empty();
-        const std::complex<double> fundamental =
-            has_phasor ? period.harmonics.front() : std::complex<double>();
-        result.amplitude_per_period.push_back(amplitude);
-        result.rms_per_period.push_back(rms);
-        result.periods.push_back(std::move(period));
-        ++result.periods_simulated;
+        const double rms = recorder.run(amplitude);
         if (result.periods_simulated <= options.transient_periods) continue;
         window.push_back(rms);
-        if (options.phase_test && has_phasor) phasors.push_back(fundamental);
+        const auto& harmonics = result.periods.back().harmonics;
+        if (options.phase_test && !harmonics.empty()) phasors.push_back(harmonics.front());
         const auto verdict = assess_steady(window, options,
                                            phasors.size() == window.size()
                                                ? std::span<const std::complex<double>>(phasors)

@@ -98,19 +98,21 @@ bool phasors_within(std::span<const std::complex<double>> phasors, std::size_t c
     return spread <= tolerance * largest;
 }
 
-std::optional<WindowVerdict> assess_steady(std::span<const double> values,
-                                           const ControllerOptions& options,
-                                           std::span<const std::complex<double>> fundamentals) {
+namespace {
+
+/// assess_steady on the newest window `w` of `values`, whose drift is already assessed.
+std::optional<WindowVerdict> steady_verdict(std::span<const double> values,
+                                            std::span<const double> w, const Drift& drift,
+                                            const ControllerOptions& options,
+                                            std::span<const std::complex<double>> fundamentals) {
     const auto n = static_cast<std::size_t>(options.window_periods);
     const double tol = options.tolerance;
-    const std::size_t m = std::min(values.size(), n);
-    const auto w = values.subspan(values.size() - m, m);  // newest m values, oldest first
+    const std::size_t m = w.size();
 
     // Settled: the whole window within the tolerance (paper 000: "does not vary
     // significantly for a certain number of periods"), and not a transient still on its way:
     // a lightly damped mode approaches its steady state by a few percent per period, which
     // fits inside the spread long before it has arrived.
-    const Drift drift = assess_drift(w, options.drift_horizon_periods);
     const bool phase_steady = fundamentals.empty() || phasors_within(fundamentals, m, tol);
     if (m == n && within(w, 0, 1, tol) && phase_steady) {
         const double level = mean(w);
@@ -140,15 +142,26 @@ std::optional<WindowVerdict> assess_steady(std::span<const double> values,
     return std::nullopt;
 }
 
+}  // namespace
+
+std::optional<WindowVerdict> assess_steady(std::span<const double> values,
+                                           const ControllerOptions& options,
+                                           std::span<const std::complex<double>> fundamentals) {
+    const std::size_t m = std::min(values.size(), static_cast<std::size_t>(options.window_periods));
+    const auto w = values.subspan(values.size() - m, m);  // newest m values, oldest first
+    return steady_verdict(values, w, assess_drift(w, options.drift_horizon_periods), options,
+                          fundamentals);
+}
+
 WindowVerdict assess_window(std::span<const double> values, double target_rms,
                             const ControllerOptions& options,
                             std::span<const std::complex<double>> fundamentals) {
-    if (auto steady = assess_steady(values, options, fundamentals)) return *steady;
     const auto n = static_cast<std::size_t>(options.window_periods);
     const double tol = options.tolerance;
     const std::size_t m = std::min(values.size(), n);
     const auto w = values.subspan(values.size() - m, m);  // newest m values, oldest first
     const Drift drift = assess_drift(w, options.drift_horizon_periods);
+    if (auto steady = steady_verdict(values, w, drift, options, fundamentals)) return *steady;
 
     if (m >= static_cast<std::size_t>(options.early_periods)) {
         // Early decision: every value beyond the target by more than the tolerance, unless

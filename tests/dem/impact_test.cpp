@@ -166,24 +166,33 @@ TEST(ViscousImpact, ADashpotGivenDirectlyRestitutesAsTheSpringDashpotOfItsDampin
     }
 }
 
-/// Contact time of one sphere launched along +x or -x at kSpeed into a curved wall.
-double curved_wall_contact_time(const SolverOptions& o, const Eigen::Vector3d& x0, double direction,
-                                double dt) {
+/// One sphere launched along +x (direction 1) or -x (-1) at kSpeed from x0 into a wall or a
+/// rod: its restitution and contact time.
+ImpactResult launched_impact(const SolverOptions& o, const Eigen::Vector3d& x0, double direction,
+                             double dt) {
     Solver s(o, particles_at({x0}, kRadius, {{direction * kSpeed, 0, 0}}));
-    double t = 0.0;
+    ImpactResult r;
     bool touched = false;
     for (int k = 0; k < 1000000; ++k) {
         s.step(dt);
         if (s.contact_count() > 0) {
             touched = true;
-            t += dt;
+            r.contact_time_s += dt;
         } else if (touched) {
             break;
         }
     }
     EXPECT_TRUE(touched);
-    EXPECT_NEAR(-s.particles().v[0].x() / (direction * kSpeed), 1.0, kRestitutionTolerance);
-    return t;
+    r.restitution = -s.particles().v[0].x() / (direction * kSpeed);
+    return r;
+}
+
+/// Contact time of one sphere launched along +x or -x at kSpeed into an undamped curved wall.
+double curved_wall_contact_time(const SolverOptions& o, const Eigen::Vector3d& x0, double direction,
+                                double dt) {
+    const ImpactResult r = launched_impact(o, x0, direction, dt);
+    EXPECT_NEAR(r.restitution, 1.0, kRestitutionTolerance);
+    return r.contact_time_s;
 }
 
 /// Hertz against curved walls (undamped): the contact time follows Hertz theory with the
@@ -227,25 +236,6 @@ TEST(CurvedWallImpact, HertzContactTimeFollowsTheEquivalentRadiusOfRodAndCylinde
     EXPECT_NEAR(t_cyl, expected_cyl, kContactTimeTolerance * expected_cyl);
 }
 
-/// One sphere launched along -x at kSpeed from x0; its restitution and contact time.
-ImpactResult sideways_impact(const SolverOptions& o, const Eigen::Vector3d& x0, double dt) {
-    Solver s(o, particles_at({x0}, kRadius, {{-kSpeed, 0, 0}}));
-    ImpactResult r;
-    bool touched = false;
-    for (int k = 0; k < 1000000; ++k) {
-        s.step(dt);
-        if (s.contact_count() > 0) {
-            touched = true;
-            r.contact_time_s += dt;
-        } else if (touched) {
-            break;
-        }
-    }
-    EXPECT_TRUE(touched);
-    r.restitution = s.particles().v[0].x() / kSpeed;
-    return r;
-}
-
 /// An obstacle grid of its own material (paper 002's printed lattice in a metal shell): a
 /// sphere striking a rod restitutes with the rod's coefficient and stays in contact for the
 /// Hertz time of the rod's modulus, one striking the wall with the wall's.
@@ -273,7 +263,7 @@ TEST(RodMaterial, ARodOfItsOwnMaterialRestitutesAndLastsAsItsOwnTheWallAsTheWall
         hertz_contact_time(sphere_mass(), 4.0 / 3.0 * e_star * std::sqrt(r_e), kSpeed);
     // Approaching the z-rod through (0, 0) from 2.5 mm beside the x- and y-rods.
     const ImpactResult rod =
-        sideways_impact(o, {kRadius + r_rod + 1e-6, 0.0, 52.5e-3}, undamped / 400.0);
+        launched_impact(o, {kRadius + r_rod + 1e-6, 0.0, 52.5e-3}, -1.0, undamped / 400.0);
     EXPECT_NEAR(rod.restitution, 0.5, kRestitutionTolerance * 0.5);
     // The dashpot lengthens the contact (by 10.5 % here at e = 0.5); steel on steel would last
     // a quarter of the resin's undamped time ((E*_resin / E*_steel)^(2/5)).
@@ -281,7 +271,7 @@ TEST(RodMaterial, ARodOfItsOwnMaterialRestitutesAndLastsAsItsOwnTheWallAsTheWall
     EXPECT_LT(rod.contact_time_s, 1.15 * undamped);
     // The -x wall of the box: the wall's restitution (x0 mid-cell, no rod within reach).
     const ImpactResult wall =
-        sideways_impact(o, {-0.05 + kRadius + 1e-6, 2.5e-3, 52.5e-3}, undamped / 4000.0);
+        launched_impact(o, {-0.05 + kRadius + 1e-6, 2.5e-3, 52.5e-3}, -1.0, undamped / 4000.0);
     EXPECT_NEAR(wall.restitution, 0.9, kRestitutionTolerance * 0.9);
 }
 
