@@ -371,15 +371,14 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
                                    return physics_describing(*shared, acceleration, f);
                                }});
         }
-        const DriveSpec& drive_spec = campaign.drive;
-        const ShakerSpec& drive_shaker = config.physics.shaker;
+        const ShakerSpec& shaker = config.physics.shaker;
         for (double f : task.frequencies_hz) {
+            // Through a shaker the drive is a voltage: its blocked force per volt.
+            const Complex per_volt = shaker.on() ? blocked_force_per_volt(shaker, f) : 1.0;
             // A fixed drive's force (through a shaker, the blocked force of its voltage).
             std::optional<double> fixed;
-            if (drive_spec.fixed()) {
-                fixed =
-                    drive_spec.excitation_amplitude(task.level_g, f) *
-                    (drive_shaker.on() ? std::abs(blocked_force_per_volt(drive_shaker, f)) : 1.0);
+            if (campaign.drive.fixed()) {
+                fixed = campaign.drive.excitation_amplitude(task.level_g, f) * std::abs(per_volt);
             }
             const Solution s =
                 solve_point(prepared, dampers, result.channel_points, task.level_g, f, fixed);
@@ -391,8 +390,6 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
             // The drive: the force F0 sin(w t), phasor -i F0, or through a shaker the voltage
             // whose blocked force it is, V = -i F0 / G.
             const Complex blocked(0.0, -s.force_n);
-            const ShakerSpec& shaker = config.physics.shaker;
-            const Complex per_volt = shaker.on() ? blocked_force_per_volt(shaker, f) : 1.0;
             id::ChannelValue drive;
             drive.amplitude = blocked / per_volt;
             drive.rms = std::abs(drive.amplitude) / std::sqrt(2.0);
