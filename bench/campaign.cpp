@@ -57,7 +57,7 @@ void identify_campaign(const CampaignConfig& config,
 /// recording.toml's channels: the reference, then the control point, then the responses (and
 /// the force into the structure when a shaker drives it, its voltage the reference).
 id::Recording campaign_recording(const CampaignConfig& config,
-                                 const std::vector<std::string>& channel_points) {
+                                 const std::vector<RecordedChannel>& channels) {
     const auto& excitation = config.structure.excitation;
     id::Recording rec;
     rec.info.name = config.name;
@@ -78,9 +78,9 @@ id::Recording campaign_recording(const CampaignConfig& config,
                                 excitation.support.empty() ? "base" : excitation.support,
                                 id::ChannelRole::reference});
     }
-    for (std::size_t i = 0; i < channel_points.size(); ++i) {
-        rec.channels.push_back({"acc_" + channel_points[i], "acceleration", "m/s^2",
-                                channel_points[i],
+    for (std::size_t i = 0; i < channels.size(); ++i) {
+        rec.channels.push_back({channels[i].name, channels[i].quantity_name(), channels[i].unit(),
+                                channels[i].location(),
                                 i == 0 ? id::ChannelRole::control : id::ChannelRole::response});
     }
     if (shaker) {
@@ -154,11 +154,8 @@ CampaignResult run_campaign(const CampaignConfig& config, const CampaignContext&
     std::vector<SweepResult> sweeps =
         executor.run(config, plan, result.config_hash, store, progress);
 
-    result.channel_points.push_back(campaign.control_point);
-    for (const auto& p : campaign.response_points) {
-        if (p != campaign.control_point) result.channel_points.push_back(p);
-    }
-    result.recording = campaign_recording(config, result.channel_points);
+    result.channels = recorded_channels(campaign, config.structure.excitation);
+    result.recording = campaign_recording(config, result.channels);
     CampaignSummary& summary = result.summary;
     for (const auto& sweep : sweeps) {
         summary.points += static_cast<int>(sweep.rows.size());

@@ -11,6 +11,7 @@
 
 #include "bench/campaign_config.hpp"
 #include "bench/campaign_plan.hpp"
+#include "bench/channels.hpp"
 #include "bench/checkpoint_store.hpp"
 #include "bench/sweep_runner.hpp"
 #include "identification/damping_curve.hpp"
@@ -71,10 +72,10 @@ struct CampaignResult {
     std::vector<identification::LevelIdentification> levels;
     std::vector<SweepResult> sweeps;  ///< in campaign order
     CampaignSummary summary;
-    std::string config_hash;  ///< of the resolved config (bench/resolved_config.hpp)
-    int threads = 1;          ///< sweeps run at once per process
-    int ranks = 1;            ///< processes the sweeps ran on
-    std::vector<std::string> channel_points;  ///< control point first
+    std::string config_hash;                ///< of the resolved config (bench/resolved_config.hpp)
+    int threads = 1;                        ///< sweeps run at once per process
+    int ranks = 1;                          ///< processes the sweeps ran on
+    std::vector<RecordedChannel> channels;  ///< after the reference, the control first
 };
 
 /// "H-0 2 g: 2 points with status closest left out of the fits (6.301, 6.412 Hz)": the line
@@ -91,9 +92,9 @@ void identify_campaign(const CampaignConfig& config,
                        CampaignResult& result);
 
 /// recording.toml's channels of a campaign of `config`: the reference ("force" or
-/// "base_acc"), then "acc_<point>" for each of `channel_points` (the control point first).
+/// "base_acc"), then `channels` (the control channel first).
 identification::Recording campaign_recording(const CampaignConfig& config,
-                                             const std::vector<std::string>& channel_points);
+                                             const std::vector<RecordedChannel>& channels);
 
 /// Runs (or resumes from context.store) the campaign of `config`. Sweeps are independent
 /// tasks run on context.threads threads; the numbers do not depend on the thread count nor

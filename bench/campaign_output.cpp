@@ -8,6 +8,7 @@
 
 #include "bench/campaign_plan.hpp"
 #include "bench/resolved_config.hpp"
+#include "bench/transient_run.hpp"
 #include "config/value.hpp"
 #include "core/text_file.hpp"
 #include "identification/plots.hpp"
@@ -81,6 +82,53 @@ void write_energy_log(const CampaignConfig& config, const CampaignResult& result
     write_file_atomically(out_dir / "energy.csv", text);
 }
 
+/// A run from rest: transient/<sweep>.csv (the time histories), transient/<sweep>_envelope.csv
+/// (each channel's lowest and highest value per period) and, with plots, one SVG per sweep
+/// of every channel's envelope against time (the reference's left out: it is the drive).
+void write_transients(const CampaignConfig& config, const CampaignResult& result,
+                      const fs::path& out_dir) {
+    id::PlotResult plots;
+    std::string script =
+        "set terminal svg size 900,900 dynamic background rgb 'white'\n"
+        "set datafile separator ','\nset key off\nset grid\n";
+    for (const auto& sweep : result.sweeps) {
+        if (sweep.transient_channels.empty()) continue;
+        const fs::path dir = out_dir / "transient";
+        create_directories_for_writing(dir);
+        std::string series = transient_series_header(sweep.transient_channels) + "\n";
+        for (const auto& line : sweep.transient_series) series += line + "\n";
+        write_file_atomically(dir / (sweep.key + ".csv"), series);
+        std::string envelope = transient_envelope_header(sweep.transient_channels) + "\n";
+        for (const auto& line : sweep.transient_envelope) envelope += line + "\n";
+        const std::string envelope_file = sweep.key + "_envelope.csv";
+        write_file_atomically(dir / envelope_file, envelope);
+
+        const std::size_t n = sweep.transient_channels.size();
+        const std::string svg = id::file_safe(sweep.key) + ".svg";
+        plots.svg.push_back(dir / svg);
+        script += "set output " + id::gnuplot_quoted(svg) + "\nset multiplot layout " +
+                  std::to_string(n - 1) + ",1 title " +
+                  id::gnuplot_quoted(sweep.arrangement + " " + sweep.key +
+                                     ": lowest and highest value per period") +
+                  "\n";
+        for (std::size_t c = 1; c < n; ++c) {
+            const std::string low = std::to_string(3 + c);
+            const std::string high = std::to_string(3 + n + c);
+            script += "set ylabel " + id::gnuplot_quoted(sweep.transient_channels[c]) + "\n";
+            script += c + 1 == n ? "set xlabel 'time [s]'\n" : "unset xlabel\n";
+            script += "plot " + id::gnuplot_quoted(envelope_file) + " skip 1 using 2:" + low +
+                      " with lines lc rgb '#1f77b4', '' skip 1 using 2:" + high +
+                      " with lines lc rgb '#1f77b4'\n";
+        }
+        script += "unset multiplot\n";
+    }
+    if (plots.svg.empty() || !config.campaign.output.plots) return;
+    plots.script = out_dir / "transient" / "plots.gp";
+    write_file_atomically(plots.script, script);
+    id::render_gnuplot(true, plots);
+    if (!plots.message.empty()) std::fprintf(stderr, "shakerbench: %s\n", plots.message.c_str());
+}
+
 }  // namespace
 
 std::string energy_csv_header(int layers) {
@@ -119,6 +167,7 @@ void write_campaign_output(const CampaignConfig& config, const CampaignResult& r
                               id::filling_damping_rows(result.levels));
     }
     if (config.campaign.output.energy) write_energy_log(config, result, out_dir);
+    if (config.campaign.transient.on()) write_transients(config, result, out_dir);
     write_file_atomically(out_dir / "config.toml", directory.config_text);
     write_file_atomically(out_dir / "config.resolved.toml", resolved_config_toml(config));
     write_provenance(config, result, directory);

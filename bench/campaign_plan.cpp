@@ -81,7 +81,10 @@ PreparedArrangement prepare(const CampaignConfig& config, const ArrangementSpec&
     p.estimate_model = structure::build_linear_model(estimate, config.base_dir);
     p.estimate_basis = structure::compute_modes(p.estimate_model, estimate.damping, estimate.modes);
     p.first_mode_hz = first_driven_mode_hz(p.estimate_basis, p.structure.excitation.direction);
-    p.frequencies_hz = frequency_grid(config.campaign.frequencies, p.first_mode_hz);
+    const TransientSpec& transient = config.campaign.transient;
+    p.frequencies_hz = transient.on() && transient.frequency_hz
+                           ? std::vector<double>{*transient.frequency_hz}
+                           : frequency_grid(config.campaign.frequencies, p.first_mode_hz);
     return p;
 }
 
@@ -230,7 +233,7 @@ CampaignPlan plan_campaign(const CampaignConfig& config, const Selection& select
             t.seed = campaign.seed + static_cast<std::uint64_t>(filling);
             t.stiffness_level_g =
                 campaign.drive.fixed() ? largest_g : std::max(largest_g, s.level_g);
-            t.refine = s.frequencies_hz.empty();
+            t.refine = s.frequencies_hz.empty() && !campaign.transient.on();
             t.key = sweep_key(config, s.arrangement, s.level_g, s.frequencies_hz);
             if (filling > 0) t.key += "_s" + std::to_string(filling);
             plan.tasks.push_back(std::move(t));

@@ -86,6 +86,11 @@ dem::SolverOptions DamperSpec::solver_options(double normal_stiffness) const {
     s.enclosure = enclosure;
     s.max_overlap_fraction = guard_overlap_fraction;
     s.threads = threads;
+    s.lock = lock;
+    if (locked) {
+        s.lock = dem::LockOptions{};
+        s.lock.fraction = 1.0;  // never released: release_time_s stays 0
+    }
     return s;
 }
 

@@ -146,6 +146,9 @@ struct DamperSpec {
     /// Particles locked to the enclosure (a rigid bed moved through the coupling loop; a
     /// check of the loop against the linear model).
     bool locked = false;
+    /// A share of the particles held to the enclosure and freed at a set time of the run
+    /// (paper 004's electromagnet); `locked` holds them all for good instead.
+    dem::LockOptions lock{};
     /// dem: particles simulated; rigid: particles replaced by an equal rigid mass;
     /// describing_function: the apparent mass of `characterization_file`.
     Model model = Model::dem;
@@ -165,6 +168,37 @@ struct DamperSpec {
     /// Constraints across keys, as the DEM module checks them: keys relative to
     /// dem::SolverOptions under "solver." and to dem::SettleOptions under "settle.".
     [[nodiscard]] Violations validate() const;
+};
+
+/// A recorded channel besides the control and response accelerations: a named point's
+/// acceleration, velocity or displacement along any direction (absolute under base
+/// excitation), or the force a damper applies to the structure (paper 001 drives z and reads
+/// y and z; paper 004 reads the tip displacement).
+struct ChannelSpec {
+    enum class Quantity { acceleration, velocity, displacement, damper_force };
+    static constexpr std::pair<Quantity, std::string_view> kQuantityNames[] = {
+        {Quantity::acceleration, "acceleration"},
+        {Quantity::velocity, "velocity"},
+        {Quantity::displacement, "displacement"},
+        {Quantity::damper_force, "damper-force"}};
+    std::string name;  ///< channel name; empty: made from the quantity, point and direction
+    Quantity quantity = Quantity::acceleration;
+    std::string point;   ///< named point (motion quantities)
+    std::string damper;  ///< the damper whose force on the structure is read (damper-force)
+    /// Direction of the reading (normalised when used); absent: the excitation direction.
+    std::optional<Eigen::Vector3d> direction;
+};
+
+/// A run from rest instead of a stepped sine: each sweep (arrangement x fixed-drive
+/// amplitude) drives the specimen at one frequency for a set time, starting at rest, and
+/// records the time histories and their envelope per period (paper 004's eccentric exciter
+/// with the granules released at 5 s).
+struct TransientSpec {
+    double duration_s = 0.0;             ///< 0: a stepped-sine campaign [s]
+    std::optional<double> frequency_hz;  ///< drive frequency [Hz]
+    int checkpoint_periods = 20;         ///< periods between checkpoints
+
+    [[nodiscard]] bool on() const { return duration_s > 0.0; }
 };
 
 /// What a campaign writes besides points.csv and damping.csv.
@@ -235,6 +269,8 @@ struct CampaignSpec {
     FrequencyGridSpec frequencies;
     std::string control_point = "damper";      ///< named point whose acceleration is controlled
     std::vector<std::string> response_points;  ///< other recorded points (acceleration)
+    std::vector<ChannelSpec> channels;         ///< further channels, any direction and quantity
+    TransientSpec transient;                   ///< a run from rest instead of stepped sines
     std::vector<DamperSpec> dampers;
     /// The controller; without an initial amplitude every sweep starts from the linear model.
     control::ControllerOptions controller = [] {

@@ -39,6 +39,7 @@ dem::ParticleSet settled_bed(const DamperSpec& damper, double stiffness,
     dem::SolverOptions local = damper.solver_options(stiffness);
     local.gravity_m_s2 = rotation.transpose() * gravity;
     local.track_energy = false;
+    local.lock = dem::LockOptions{};  // the bed settles free; a lock then holds it as it lies
     if (damper.fill == DamperSpec::Fill::pour) return dem::pour(local, seed, damper.settle);
     dem::ParticleSet filled;
     try {
@@ -220,7 +221,6 @@ ApparentMassPoint measure(const CampaignConfig& config, const CharacterizeOption
     EnclosureSetup setup;
     setup.options = bed.damper->solver_options(bed.contact.stiffness);
     setup.options.gravity_m_s2 = prepared.structure.gravity_m_s2;
-    if (bed.damper->locked) setup.options.lock.fraction = 1.0;
     setup.mount_rotation = mounting.rotation;
     setup.offset_m = mounting.origin_m;
     setup.bed = particles;

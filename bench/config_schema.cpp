@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "bench/campaign_config.hpp"
+#include "bench/channels.hpp"
 #include "bench/schema_parts.hpp"
 #include "config/builder.hpp"
 
@@ -105,6 +106,69 @@ std::shared_ptr<const config::Table> drive_table() {
     return t.build();
 }
 
+std::shared_ptr<const config::Table> transient_table() {
+    TableBuilder<TransientSpec> t(
+        "a run from rest",
+        "Instead of stepped sines, each sweep (arrangement x `campaign.drive.amplitudes`) "
+        "drives the specimen at one frequency for a set time from rest and records every "
+        "channel's time history and its envelope per period (transient/ in the recording "
+        "directory). Needs `campaign.drive.kind = \"fixed\"`; `[campaign.frequencies]` is "
+        "not used. Events at set times (a lock's release) come at the same moment of a resumed "
+        "run.");
+    t.number(
+         "duration_s", [](TransientSpec & s) -> auto& { return s.duration_s; },
+         "simulated time of each run; 0: a stepped-sine campaign")
+        .unit("s")
+        .bound(Bound::non_negative());
+    t.number(
+         "frequency_hz", [](TransientSpec & s) -> auto& { return s.frequency_hz; },
+         "drive frequency")
+        .unit("Hz")
+        .bound(Bound::positive())
+        .doc("drive frequency (required with duration_s > 0)");
+    t.integer(
+         "checkpoint_periods", [](TransientSpec & s) -> auto& { return s.checkpoint_periods; },
+         "periods between checkpoints (an interrupted run resumes from the last)")
+        .bound(Bound::at_least(1));
+    return t.build();
+}
+
+std::shared_ptr<const config::Table> channel_table() {
+    TableBuilder<ChannelSpec> t(
+        "a further recorded channel",
+        "A channel recorded besides the control and response accelerations: a named point's "
+        "acceleration, velocity or displacement along any direction (absolute under base "
+        "excitation), or the force a damper applies to the structure. Repeat the table for "
+        "each channel.");
+    t.string(
+         "name", [](ChannelSpec & c) -> auto& { return c.name; }, "channel name")
+        .optional()
+        .doc(
+            "column name in points.csv and series/; absent: the quantity's prefix (`acc`, "
+            "`vel`, `disp`, `force`), the point or damper and, off the excitation direction, "
+            "its axis (`acc_bracket_y`; `_dir` for a direction along no axis)");
+    t.choice(
+        "quantity", [](ChannelSpec & c) -> auto& { return c.quantity; },
+        ChannelSpec::kQuantityNames, "what the channel reads (m/s^2, m/s, m or N)");
+    t.string(
+         "point", [](ChannelSpec & c) -> auto& { return c.point; }, "named point read")
+        .optional()
+        .doc("named point whose motion is read (required for a motion quantity)");
+    t.string(
+         "damper", [](ChannelSpec & c) -> auto& { return c.damper; },
+         "the damper whose force on the structure is read")
+        .optional()
+        .doc(
+            "the `[dampers.NAME]` whose force on the structure is read (required with "
+            "`quantity = \"damper-force\"`; not a rigid damper, whose mass is part of the "
+            "structure)");
+    t.vector3(
+         "direction", [](ChannelSpec & c) -> auto& { return c.direction; },
+         "direction of the reading (normalised)")
+        .doc("direction of the reading, not all 0 (normalised); absent: the excitation direction");
+    return t.build();
+}
+
 std::shared_ptr<const config::Table> campaign_table() {
     TableBuilder<CampaignConfig> t("the campaign");
     t.string(
@@ -133,7 +197,11 @@ std::shared_ptr<const config::Table> campaign_table() {
             "(channel `acc_<point>`)");
     t.strings(
         "response_points", [](CampaignConfig & c) -> auto& { return c.campaign.response_points; },
-        "named points recorded besides the control point (channels `acc_<point>`)");
+        "named points recorded besides the control point (channels `acc_<point>`, along the "
+        "excitation direction)");
+    t.array_of_tables(
+        "channels", [](CampaignConfig & c) -> auto& { return c.campaign.channels; },
+        channel_table());
     t.choice(
          "point_start", [](CampaignConfig & c) -> auto& { return c.campaign.point_start; },
          CampaignSpec::kPointStartNames, "how the structure starts each point after the first")
@@ -172,6 +240,9 @@ std::shared_ptr<const config::Table> campaign_table() {
         frequencies_table());
     t.table(
         "drive", [](CampaignConfig & c) -> auto& { return c.campaign.drive; }, drive_table());
+    t.table(
+        "transient", [](CampaignConfig & c) -> auto& { return c.campaign.transient; },
+        transient_table());
     return t.build();
 }
 
@@ -579,6 +650,60 @@ std::vector<std::string> point_names(const structure::StructureSpec& spec) {
     return names;
 }
 
+/// [[campaign.channels]]: what each reads exists, and every channel name is unique among
+/// the recording's channels.
+template <class Known>
+void check_channels(const CampaignConfig& config, const Known& known, Violations& out) {
+    using Q = ChannelSpec::Quantity;
+    const auto text = [](const std::string& s) { return config::quoted(s); };
+    const auto& campaign = config.campaign;
+    std::vector<std::string> taken{"force", "voltage", "base_acc"};
+    CampaignSpec accelerations = campaign;  // the control and response channels alone
+    accelerations.channels.clear();
+    for (const auto& c : recorded_channels(accelerations, config.structure.excitation)) {
+        taken.push_back(c.name);
+    }
+    for (std::size_t i = 0; i < campaign.channels.size(); ++i) {
+        const ChannelSpec& c = campaign.channels[i];
+        const std::string key = config::index_path("campaign.channels", i);
+        if (c.quantity == Q::damper_force) {
+            const auto damper =
+                std::find_if(campaign.dampers.begin(), campaign.dampers.end(),
+                             [&](const DamperSpec& d) { return d.name == c.damper; });
+            if (c.damper.empty()) {
+                out.push_back({key + ".damper", "absent",
+                               "is required with quantity = \"damper-force\"", ""});
+            } else if (damper == campaign.dampers.end()) {
+                out.push_back({key + ".damper", text(c.damper),
+                               "must name a table [dampers." + c.damper + "]", ""});
+            } else if (damper->model == DamperSpec::Model::rigid) {
+                out.push_back({key + ".damper", text(c.damper),
+                               "names a rigid damper, whose mass is part of the structure: it "
+                               "applies no force of its own",
+                               ""});
+            }
+        } else if (c.point.empty()) {
+            out.push_back({key + ".point", "absent", "is required for a motion channel", ""});
+        } else if (!known(c.point)) {
+            out.push_back(
+                {key + ".point", text(c.point), "must name a point of the structure", ""});
+        }
+        if (c.direction && !(c.direction->norm() > 0.0)) {
+            out.push_back({key + ".direction", "[0, 0, 0]", "must not be all 0", ""});
+        }
+        const std::string name =
+            c.name.empty() ? default_channel_name(c, config.structure.excitation.direction)
+                           : c.name;
+        if (std::find(taken.begin(), taken.end(), name) != taken.end()) {
+            out.push_back({key + ".name", text(name),
+                           "is taken by another channel of the recording: give each a name of "
+                           "its own",
+                           ""});
+        }
+        taken.push_back(name);
+    }
+}
+
 /// Every point, mass and arrangement the campaign names must exist.
 Violations check_references(const CampaignConfig& config) {
     Violations out;
@@ -596,6 +721,18 @@ Violations check_references(const CampaignConfig& config) {
             out.push_back(
                 {"campaign.response_points", text(p), "must name a point of the structure", ""});
         }
+    }
+    check_channels(config, known, out);
+    const TransientSpec& transient = config.campaign.transient;
+    if (transient.on() && !config.campaign.drive.fixed()) {
+        out.push_back({"campaign.transient.duration_s", config::number_text(transient.duration_s),
+                       "needs campaign.drive.kind = \"fixed\": a run from rest drives each "
+                       "amplitude unchanged",
+                       ""});
+    }
+    if (transient.on() && !transient.frequency_hz) {
+        out.push_back({"campaign.transient.frequency_hz", "absent",
+                       "is required with campaign.transient.duration_s > 0", ""});
     }
     for (const auto& name : config.campaign.arrangement_selection) {
         const auto& defined = config.campaign.arrangements;

@@ -27,7 +27,7 @@ CoupledSpecimen::CoupledSpecimen(const structure::LinearModel& model,
                                  const structure::ModalBasis& basis,
                                  const structure::ExcitationSpec& excitation,
                                  std::vector<Attachment> attachments,
-                                 std::vector<std::string> channel_points, double dt_max_s,
+                                 std::vector<RecordedChannel> channels, double dt_max_s,
                                  int step_multiple)
     : model_(&model),
       basis_(&basis),
@@ -35,7 +35,7 @@ CoupledSpecimen::CoupledSpecimen(const structure::LinearModel& model,
       start_basis_(&basis),
       excitation_(excitation),
       attachments_(std::move(attachments)),
-      channel_points_(std::move(channel_points)),
+      channels_(std::move(channels)),
       direction_(excitation.direction.normalized()),
       dt_max_s_(dt_max_s),
       step_multiple_(std::max(1, step_multiple)) {
@@ -45,10 +45,39 @@ CoupledSpecimen::CoupledSpecimen(const structure::LinearModel& model,
     }
     names_.push_back(excitation_.kind == structure::ExcitationSpec::Kind::force ? "force"
                                                                                 : "base_acc");
-    for (const auto& p : channel_points_) {
-        names_.push_back("acc_" + p);
+    for (const auto& c : channels_) {
+        names_.push_back(c.name);
+        if (c.quantity != RecordedChannel::Quantity::damper_force) continue;
+        const auto found = std::find_if(attachments_.begin(), attachments_.end(),
+                                        [&](const Attachment& a) { return a.name == c.damper; });
+        if (found == attachments_.end()) {
+            throw std::invalid_argument("coupled specimen: channel " + c.name +
+                                        " reads the force of \"" + c.damper +
+                                        "\", which is attached nowhere");
+        }
     }
 }
+
+namespace {
+
+std::vector<RecordedChannel> accelerations_along(const std::vector<std::string>& points,
+                                                 const Eigen::Vector3d& direction) {
+    std::vector<RecordedChannel> out;
+    for (const auto& p : points) out.push_back(acceleration_channel(p, direction));
+    return out;
+}
+
+}  // namespace
+
+CoupledSpecimen::CoupledSpecimen(const structure::LinearModel& model,
+                                 const structure::ModalBasis& basis,
+                                 const structure::ExcitationSpec& excitation,
+                                 std::vector<Attachment> attachments,
+                                 const std::vector<std::string>& channel_points, double dt_max_s,
+                                 int step_multiple)
+    : CoupledSpecimen(model, basis, excitation, std::move(attachments),
+                      accelerations_along(channel_points, excitation.direction), dt_max_s,
+                      step_multiple) {}
 
 void CoupledSpecimen::drive_through(const ShakerSpec& shaker) {
     if (excitation_.kind != structure::ExcitationSpec::Kind::force) {
@@ -109,8 +138,15 @@ void CoupledSpecimen::set_frequency(double frequency_hz) {
         add_loaded(attachment_point_index_.back());
     }
     channel_index_.clear();
-    for (const auto& p : channel_points_) {
-        channel_index_.push_back(structure_->point_index(p));
+    for (const auto& c : channels_) {
+        if (c.quantity == RecordedChannel::Quantity::damper_force) {
+            const auto found =
+                std::find_if(attachments_.begin(), attachments_.end(),
+                             [&](const Attachment& a) { return a.name == c.damper; });
+            channel_index_.push_back(static_cast<int>(found - attachments_.begin()));
+        } else {
+            channel_index_.push_back(structure_->point_index(c.point));
+        }
     }
     if (excitation_.kind == structure::ExcitationSpec::Kind::force) {
         shaker_index_ = structure_->point_index(excitation_.point);
@@ -236,8 +272,24 @@ void CoupledSpecimen::step(double amplitude, std::vector<double>& values) {
 
     values.resize(names_.size());
     values[0] = excitation_value(amplitude, structure_->time_s());
-    for (std::size_t c = 0; c < channel_index_.size(); ++c) {
-        values[c + 1] = structure_->acceleration(channel_index_[c]).dot(direction_);
+    for (std::size_t c = 0; c < channels_.size(); ++c) {
+        const int k = channel_index_[c];
+        const Eigen::Vector3d& along = channels_[c].direction;
+        switch (channels_[c].quantity) {
+            case RecordedChannel::Quantity::acceleration:
+                values[c + 1] = structure_->acceleration(k).dot(along);
+                break;
+            case RecordedChannel::Quantity::velocity:
+                values[c + 1] = structure_->velocity(k).dot(along);
+                break;
+            case RecordedChannel::Quantity::displacement:
+                values[c + 1] = structure_->displacement(k).dot(along);
+                break;
+            case RecordedChannel::Quantity::damper_force:
+                // The force the damper applied to the structure over the step just taken.
+                values[c + 1] = loads_[static_cast<std::size_t>(k)].head<3>().dot(along);
+                break;
+        }
     }
     if (shaker_) {
         // The transducer at the stinger's end: the coil's force less the suspension's and the

@@ -11,6 +11,7 @@
 
 #include "bench/attachment.hpp"
 #include "bench/campaign_spec.hpp"
+#include "bench/channels.hpp"
 #include "bench/physics_spec.hpp"
 #include "structure/linear_model.hpp"
 #include "structure/modal_analysis.hpp"
@@ -35,12 +36,19 @@ struct SpecimenState {
 /// included) are summed and load the structure over the same step.
 class CoupledSpecimen {
   public:
-    /// `channel_points`: the points whose acceleration along the excitation direction is
-    /// recorded (channels "acc_<point>"); the first one is the control channel.
+    /// `channels`: what is recorded after the reference (bench/channels.hpp); the first is
+    /// the control channel. A damper-force channel reads the load of the attachment of the
+    /// damper's name.
     CoupledSpecimen(const structure::LinearModel& model, const structure::ModalBasis& basis,
                     const structure::ExcitationSpec& excitation,
-                    std::vector<Attachment> attachments, std::vector<std::string> channel_points,
+                    std::vector<Attachment> attachments, std::vector<RecordedChannel> channels,
                     double dt_max_s, int step_multiple = 1);
+    /// The accelerations of `channel_points` along the excitation direction ("acc_<point>").
+    CoupledSpecimen(const structure::LinearModel& model, const structure::ModalBasis& basis,
+                    const structure::ExcitationSpec& excitation,
+                    std::vector<Attachment> attachments,
+                    const std::vector<std::string>& channel_points, double dt_max_s,
+                    int step_multiple = 1);
 
     /// Drives the force excitation through an electrodynamic shaker (physics.shaker): the
     /// amplitude becomes the amplifier's voltage, which the reference channel "voltage"
@@ -50,7 +58,7 @@ class CoupledSpecimen {
     void drive_through(const ShakerSpec& shaker);
 
     /// Names of the recorded channels: the reference ("force", "voltage" or "base_acc")
-    /// first, then "acc_<point>" for each channel point, then "force" when a shaker drives.
+    /// first, then each recorded channel, then "force" when a shaker drives.
     [[nodiscard]] const std::vector<std::string>& channel_names() const { return names_; }
 
     /// Chooses the step for this frequency: the largest dt <= dt_max with a whole number of
@@ -124,7 +132,8 @@ class CoupledSpecimen {
     std::vector<Eigen::Matrix<double, 6, 1>> loads_;         ///< last applied, per attachment
     std::vector<int> loaded_points_;                         ///< every point a load acts at
     std::vector<Eigen::Matrix<double, 6, 1>> point_totals_;  ///< work space, per loaded point
-    std::vector<std::string> channel_points_;
+    std::vector<RecordedChannel> channels_;
+    /// Per channel: the structure's point index (motion), or the attachment's index (force).
     std::vector<int> channel_index_;
     std::vector<std::string> names_;
     Eigen::Vector3d direction_;

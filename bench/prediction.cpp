@@ -12,6 +12,7 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 
 #include "bench/arrangement.hpp"
 #include "bench/physics_attachments.hpp"
@@ -99,6 +100,7 @@ PointLoad bed_weight(const PreparedArrangement& prepared, const DamperSpec& damp
 /// A describing function at a point of one sweep: a damper's, characterised, or a catalogue
 /// physics' in closed form (an air-drag strip).
 struct Described {
+    std::string name;  ///< the damper's (or physics attachment's) name
     std::string point;
     std::function<DescribingFunction::Value(double acceleration_m_s2, double frequency_hz)>
         evaluate;
@@ -107,8 +109,8 @@ struct Described {
 /// One predicted point.
 struct Solution {
     double force_n = 0.0;                ///< drive amplitude F0 (force F0 sin(w t)) [N]
-    std::vector<Complex> channels;       ///< acceleration phasors per channel point [m/s^2]
-    std::vector<double> h2, h3;          ///< estimated harmonic ratios per channel point [-]
+    std::vector<Complex> channels;       ///< phasors per channel [channel unit]
+    std::vector<double> h2, h3;          ///< estimated harmonic ratios per channel [-]
     std::vector<double> amplitudes;      ///< |a1| per damper [m/s^2]
     std::vector<Complex> accelerations;  ///< a1 phasor per damper point [m/s^2]
     std::vector<Complex> masses;         ///< apparent mass per damper [kg]
@@ -120,16 +122,31 @@ struct Solution {
     double damper_harmonics = 0.0;  ///< largest (|a2| + |a3|) / |a1| at a damper point [-]
 };
 
+/// A motion channel's phasor per unit acceleration phasor at angular frequency w: 1,
+/// 1 / (i w) for a velocity, -1 / w^2 for a displacement.
+Complex per_acceleration(RecordedChannel::Quantity quantity, double w) {
+    switch (quantity) {
+        case RecordedChannel::Quantity::velocity:
+            return 1.0 / Complex(0.0, w);
+        case RecordedChannel::Quantity::displacement:
+            return -1.0 / (w * w);
+        default:
+            return 1.0;
+    }
+}
+
 /// Harmonic balance at one frequency: the structure's accelerances between the drive, the
 /// damper points and the channel points, the dampers as Q_j = -M_j(|a_j|, f) a_j along the
 /// excitation direction d. For a unit force phasor the damper points' accelerations solve
 ///   (I + H_pp diag(M)) a_p = H_pd,
-/// the channels follow as a_c = H_cd - H_cp diag(M) a_p, and F0 scales them to the control
-/// target, or is `fixed_drive` (a fixed drive's excitation amplitude at this frequency). M
-/// depends on |a_p|: a fixed point on the amplitudes, exact in one step when the control
-/// point is the only damper's point (its amplitude is the target's).
+/// the channels' accelerations (each along its own direction) follow as
+/// a_c = H_cd - H_cp diag(M) a_p, a velocity or displacement channel as a_c / (i w) or
+/// -a_c / w^2, a damper-force channel as Q_j projected on its direction; F0 scales them to
+/// the control target, or is `fixed_drive` (a fixed drive's excitation amplitude at this
+/// frequency). M depends on |a_p|: a fixed point on the amplitudes, exact in one step when
+/// the control point is the only damper's point (its amplitude is the target's).
 Solution solve_point(const PreparedArrangement& prepared, const std::vector<Described>& dampers,
-                     const std::vector<std::string>& channel_points, double level_g,
+                     const std::vector<RecordedChannel>& channels, double level_g,
                      double frequency_hz, std::optional<double> fixed_drive) {
     const auto& model = prepared.model;
     const auto& basis = prepared.basis;
@@ -138,12 +155,25 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
     const auto accelerance = [&](const std::string& out, const std::string& in, double f) {
         return structure::modal_accelerance(model, basis, out, d, in, d, f);
     };
+    const auto channel_accelerance = [&](const RecordedChannel& c, const std::string& in,
+                                         double f) {
+        return structure::modal_accelerance(model, basis, c.point, c.direction, in, d, f);
+    };
+    const auto force_of = [&](const RecordedChannel& c) -> std::optional<std::size_t> {
+        if (c.quantity != RecordedChannel::Quantity::damper_force) return std::nullopt;
+        for (std::size_t j = 0; j < dampers.size(); ++j) {
+            if (dampers[j].name == c.damper) return j;
+        }
+        throw std::invalid_argument("prediction: channel " + c.name + " reads the force of \"" +
+                                    c.damper + "\", which is not predicted");
+    };
     const std::size_t nd = dampers.size();
-    const std::size_t nc = channel_points.size();
+    const std::size_t nc = channels.size();
     Eigen::VectorXcd h_pd(static_cast<Eigen::Index>(nd));
     Eigen::MatrixXcd h_pp(static_cast<Eigen::Index>(nd), static_cast<Eigen::Index>(nd));
-    Eigen::VectorXcd h_cd(static_cast<Eigen::Index>(nc));
-    Eigen::MatrixXcd h_cp(static_cast<Eigen::Index>(nc), static_cast<Eigen::Index>(nd));
+    Eigen::VectorXcd h_cd = Eigen::VectorXcd::Zero(static_cast<Eigen::Index>(nc));
+    Eigen::MatrixXcd h_cp =
+        Eigen::MatrixXcd::Zero(static_cast<Eigen::Index>(nc), static_cast<Eigen::Index>(nd));
     for (std::size_t j = 0; j < nd; ++j) {
         const auto jj = static_cast<Eigen::Index>(j);
         h_pd(jj) = accelerance(dampers[j].point, excitation.point, frequency_hz);
@@ -152,12 +182,19 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
                 accelerance(dampers[j].point, dampers[k].point, frequency_hz);
         }
     }
+    const double w = hz_to_rad_s(frequency_hz);
     for (std::size_t c = 0; c < nc; ++c) {
         const auto cc = static_cast<Eigen::Index>(c);
-        h_cd(cc) = accelerance(channel_points[c], excitation.point, frequency_hz);
+        if (const auto j = force_of(channels[c])) {
+            // Q_j = -M_j a_j along d, read along the channel's direction.
+            h_cp(cc, static_cast<Eigen::Index>(*j)) = d.dot(channels[c].direction);
+            continue;
+        }
+        const Complex per = per_acceleration(channels[c].quantity, w);
+        h_cd(cc) = per * channel_accelerance(channels[c], excitation.point, frequency_hz);
         for (std::size_t k = 0; k < nd; ++k) {
             h_cp(cc, static_cast<Eigen::Index>(k)) =
-                accelerance(channel_points[c], dampers[k].point, frequency_hz);
+                per * channel_accelerance(channels[c], dampers[k].point, frequency_hz);
         }
     }
     const double target_peak = std::sqrt(2.0) * g_to_m_s2(level_g);
@@ -169,7 +206,7 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
     for (std::size_t j = 0; j < nd; ++j) {
         const double h = std::abs(h_pd(static_cast<Eigen::Index>(j)));
         amplitude[j] = fixed_drive ? *fixed_drive * h
-                       : channel_points.front() == dampers[j].point
+                       : channels.front().point == dampers[j].point
                            ? target_peak
                            : target_peak * h / std::abs(h_cd(0));
     }
@@ -217,8 +254,9 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
     for (std::size_t c = 0; c < nc; ++c)
         s.channels.push_back(a_c(static_cast<Eigen::Index>(c)) * drive);
     // Harmonics: the dampers' force harmonics |Q_k| = h_k |Q1| (characterised) reach every
-    // channel through the accelerance at k w; their phases are unknown, so the magnitudes add
-    // (an upper bound when several dampers load the structure).
+    // channel through the accelerance at k w (a velocity over k w, a displacement over
+    // (k w)^2; a damper-force channel is its damper's own); their phases are unknown, so the
+    // magnitudes add (an upper bound when several dampers load the structure).
     s.h2.assign(nc, 0.0);
     s.h3.assign(nc, 0.0);
     for (std::size_t j = 0; j < nd; ++j) {
@@ -228,12 +266,20 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
         for (std::size_t c = 0; c < nc; ++c) {
             const double a1 = std::abs(s.channels[c]);
             if (!(a1 > 0.0)) continue;
-            s.h2[c] +=
-                std::abs(accelerance(channel_points[c], dampers[j].point, 2.0 * frequency_hz)) *
-                values[j].h2_ratio * q1 / a1;
-            s.h3[c] +=
-                std::abs(accelerance(channel_points[c], dampers[j].point, 3.0 * frequency_hz)) *
-                values[j].h3_ratio * q1 / a1;
+            if (const auto k = force_of(channels[c])) {
+                if (*k == j) {
+                    s.h2[c] = values[j].h2_ratio;
+                    s.h3[c] = values[j].h3_ratio;
+                }
+                continue;
+            }
+            const auto at = [&](int harmonic) {
+                const double f = harmonic * frequency_hz;
+                return std::abs(per_acceleration(channels[c].quantity, harmonic * w) *
+                                channel_accelerance(channels[c], dampers[j].point, f));
+            };
+            s.h2[c] += at(2) * values[j].h2_ratio * q1 / a1;
+            s.h3[c] += at(3) * values[j].h3_ratio * q1 / a1;
         }
         s.inside = s.inside && values[j].inside;
         s.settled = s.settled && values[j].settled;
@@ -322,10 +368,7 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
     CampaignResult result;
     result.config_hash = config_hash(config);
     result.threads = 1;
-    result.channel_points.push_back(campaign.control_point);
-    for (const auto& p : campaign.response_points) {
-        if (p != campaign.control_point) result.channel_points.push_back(p);
-    }
+    result.channels = recorded_channels(campaign, config.structure.excitation);
     std::map<std::string, CharacterizationTable> tables;
     std::vector<std::string> warned;
     for (const auto& d : campaign.dampers) {
@@ -357,8 +400,9 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
             if (d.model != DamperSpec::Model::describing_function) continue;
             const auto& table = table_of(config, d, tables);
             auto function = function_of(config, d, prepared.arrangement.name, table);
-            dampers.push_back(
-                {d.point, [function](double a, double f) { return function->evaluate(a, f); }});
+            dampers.push_back({d.name, d.point, [function](double a, double f) {
+                                   return function->evaluate(a, f);
+                               }});
             sweep.settings.push_back(d.name + ": describing function of " +
                                      d.characterization_file.string() + " (characterised config " +
                                      table.config_hash + ")");
@@ -367,9 +411,10 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
         for (auto& a : physics_attachments(config, prepared)) {
             if (std::holds_alternative<ShakerCoil>(a.model)) coil = dampers.size();
             auto shared = std::make_shared<const Attachment>(std::move(a));
-            dampers.push_back({shared->point, [shared](double acceleration, double f) {
-                                   return physics_describing(*shared, acceleration, f);
-                               }});
+            dampers.push_back(
+                {shared->name, shared->point, [shared](double acceleration, double f) {
+                     return physics_describing(*shared, acceleration, f);
+                 }});
         }
         const ShakerSpec& shaker = config.physics.shaker;
         for (double f : task.frequencies_hz) {
@@ -381,7 +426,7 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
                 fixed = campaign.drive.excitation_amplitude(task.level_g, f) * std::abs(per_volt);
             }
             const Solution s =
-                solve_point(prepared, dampers, result.channel_points, task.level_g, f, fixed);
+                solve_point(prepared, dampers, result.channels, task.level_g, f, fixed);
             id::PointRow row;
             row.arrangement = prepared.arrangement.name;
             row.level_g = task.level_g;
@@ -431,7 +476,7 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
         result.sweeps.push_back(std::move(sweep));
     }
 
-    result.recording = campaign_recording(config, result.channel_points);
+    result.recording = campaign_recording(config, result.channels);
     CampaignSummary& summary = result.summary;
     summary.points = plan.points();
     for (const auto& sweep : result.sweeps) {

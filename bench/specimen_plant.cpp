@@ -1,6 +1,7 @@
 // The coupled specimen as the controller's plant.
 #include "bench/specimen_plant.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -97,6 +98,8 @@ control::PeriodResult SpecimenPlant::run_period(double amplitude, double frequen
     PeriodChannels period;
     period.mean.resize(channels);
     period.mean_square.resize(channels);
+    period.minimum.resize(channels);
+    period.maximum.resize(channels);
     period.fundamental.resize(channels);
     period.second.resize(channels);
     period.third.resize(channels);
@@ -130,6 +133,9 @@ control::PeriodResult SpecimenPlant::run_period(double amplitude, double frequen
         }
         period.mean[c] = mean;
         period.mean_square[c] = ms / n;
+        const auto [low, high] = std::minmax_element(x.begin(), x.end());
+        period.minimum[c] = *low;
+        period.maximum[c] = *high;
         // Whole periods sampled uniformly: the DFT bins at w, 2w, 3w are exact harmonics.
         period.fundamental[c] = 2.0 / n * acc;
         period.second[c] = 2.0 / n * acc2;

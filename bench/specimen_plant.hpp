@@ -26,6 +26,7 @@ struct PeriodEnergy {
 struct PeriodChannels {
     std::vector<double> mean;                         ///< per channel
     std::vector<double> mean_square;                  ///< per channel, mean removed
+    std::vector<double> minimum, maximum;             ///< per channel, over every step
     std::vector<std::complex<double>> fundamental;    ///< per channel, x = Re{X e^{i w t}}
     std::vector<std::complex<double>> second;         ///< per channel, harmonic at 2 w
     std::vector<std::complex<double>> third;          ///< per channel, harmonic at 3 w

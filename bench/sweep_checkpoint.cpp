@@ -104,6 +104,17 @@ class Reader {
     }
     const std::string& current() const { return current_; }
     /// Whatever follows the line just read.
+    /// Whether the next line starts with the word `key` (nothing is read).
+    bool next_is(const std::string& key) {
+        const auto at = in_.tellg();
+        std::string l;
+        const bool found =
+            static_cast<bool>(std::getline(in_, l)) && l.rfind(key, 0) == 0 &&
+            (l.size() == key.size() || l[key.size()] == ' ' || l[key.size()] == '\t');
+        in_.clear();
+        in_.seekg(at);
+        return found;
+    }
     bool at_end() {
         std::string rest;
         return !std::getline(in_, rest);
@@ -409,6 +420,12 @@ std::string serialize_checkpoint(const SweepCheckpoint& c) {
     write_rows(w, c.rows);
     write_lines(w, "log", "l", c.control_log);
     write_lines(w, "energy", "e", c.energy_log);
+    if (c.transient_periods > 0) {
+        // Only a run from rest writes it: a stepped sine's checkpoint reads as before.
+        w.key("transient").integer(c.transient_periods).end();
+        write_lines(w, "series", "s", c.transient_series);
+        write_lines(w, "envelope", "v", c.transient_envelope);
+    }
     w.key("end").end();
     return seal_checkpoint(w.str());
 }
@@ -535,6 +552,21 @@ SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& fil
     c.rows = read_rows(r, c.points_done);
     c.control_log = read_lines(r, "log", "l", c.points_done);
     c.energy_log = read_lines(r, "energy", "e");
+    if (r.next_is("transient")) {
+        auto words = r.line("transient");
+        const long long periods = r.integer(words);
+        if (periods < 0 || periods > kMaxCount) {
+            r.fail("implausible transient periods " + std::to_string(periods));
+        }
+        r.end(words);
+        c.transient_periods = static_cast<int>(periods);
+        c.transient_series = read_lines(r, "series", "s");
+        c.transient_envelope = read_lines(r, "envelope", "v");
+        if (static_cast<long long>(c.transient_envelope.size()) != periods) {
+            r.fail(std::to_string(c.transient_envelope.size()) + " envelope rows for " +
+                   std::to_string(periods) + " periods run");
+        }
+    }
     {
         auto words = r.line("end");
         r.end(words);
@@ -560,6 +592,9 @@ std::string serialize_sweep_result(const SweepResult& result) {
     w.end();
     write_lines(w, "log", "l", result.control_log);
     write_lines(w, "energy", "e", result.energy_log);
+    write_lines(w, "transient_channels", "c", result.transient_channels);
+    write_lines(w, "series", "s", result.transient_series);
+    write_lines(w, "envelope", "v", result.transient_envelope);
     w.key("resumed_points").integer(result.resumed_points).end();
     w.key("periods_simulated").integer(result.periods_simulated).end();
     w.key("end").end();
@@ -599,6 +634,9 @@ SweepResult parse_sweep_result(const std::string& text, const std::string& sourc
     }
     s.control_log = read_lines(r, "log", "l");
     s.energy_log = read_lines(r, "energy", "e");
+    s.transient_channels = read_lines(r, "transient_channels", "c");
+    s.transient_series = read_lines(r, "series", "s");
+    s.transient_envelope = read_lines(r, "envelope", "v");
     {
         auto words = r.line("resumed_points");
         s.resumed_points = static_cast<int>(r.integer(words));

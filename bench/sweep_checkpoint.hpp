@@ -23,6 +23,10 @@ struct SweepCheckpoint {
     std::vector<identification::PointRow> rows;  ///< the finished points
     std::vector<std::string> control_log;        ///< per point: how the controller got there
     std::vector<std::string> energy_log;         ///< energy.csv rows of the finished points
+    /// A run from rest (no points): the periods it has run and their rows (SweepResult).
+    int transient_periods = 0;
+    std::vector<std::string> transient_series;
+    std::vector<std::string> transient_envelope;
 };
 
 /// A checkpoint that cannot be resumed: truncated, corrupted (its checksum does not match its

@@ -20,6 +20,7 @@
 #include "bench/prediction.hpp"
 #include "bench/specimen_plant.hpp"
 #include "bench/sweep_checkpoint.hpp"
+#include "bench/transient_run.hpp"
 #include "control/controller.hpp"
 #include "control/fixed_drive.hpp"
 #include "core/units.hpp"
@@ -56,6 +57,7 @@ dem::ParticleSet settled_bed(const DamperSpec& damper, double stiffness,
         dem::SolverOptions local = damper.solver_options(stiffness);
         local.gravity_m_s2 = rotation.transpose() * gravity;
         local.track_energy = false;
+        local.lock = dem::LockOptions{};  // the bed settles free; a lock then holds it as it lies
         dem::ParticleSet settled;
         if (damper.fill == DamperSpec::Fill::pour) {
             settled = dem::pour(local, seed, damper.settle);
@@ -283,9 +285,6 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
         // The campaign measures damping from the FRF; the ledger is kept when asked for.
         options.track_energy = energy;
         options.energy_layers = energy ? campaign.output.energy_layers : 0;
-        if (damper.locked) {
-            options.lock.fraction = 1.0;  // never released: release_time_s stays 0
-        }
         attachments.push_back({damper.name, damper.point,
                                DemDamper(options, mounting.rotation, mounting.origin_m, bed,
                                          prepared.model.point(damper.point).position_m)});
@@ -298,14 +297,13 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
         attachments.push_back(std::move(strip));
     }
 
-    std::vector<std::string> channel_points{campaign.control_point};
-    for (const auto& p : campaign.response_points) {
-        if (p != campaign.control_point) channel_points.push_back(p);
-    }
-    const int series_samples =
-        campaign.output.series ? campaign.output.series_samples_per_period : 0;
+    // A run from rest records its time histories always.
+    const int series_samples = campaign.output.series || campaign.transient.on()
+                                   ? campaign.output.series_samples_per_period
+                                   : 0;
     CoupledSpecimen specimen(prepared.model, prepared.basis, prepared.structure.excitation,
-                             std::move(attachments), channel_points, dt_max,
+                             std::move(attachments),
+                             recorded_channels(campaign, prepared.structure.excitation), dt_max,
                              std::max(series_samples, 1));
     specimen.set_start_model(prepared.estimate_model, prepared.estimate_basis);
     const ShakerSpec& shaker = config.physics.shaker;
@@ -342,6 +340,45 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
         // Every point starts from the text, as a resumed one does.
         checkpoint = parse_checkpoint(text, checkpoint_name);
     };
+    if (campaign.transient.on()) {
+        if (const auto text = store.load_checkpoint(task.key)) {
+            checkpoint = parse_checkpoint(*text, checkpoint_name);
+            if (!checkpoint.rows.empty()) {
+                throw CheckpointError(checkpoint_name, 0,
+                                      "holds stepped-sine points, not a run from rest");
+            }
+            progress.note(task.key + ": run from rest resumed after " +
+                          std::to_string(checkpoint.transient_periods) + " periods");
+        }
+        TransientDrive drive;
+        drive.frequency_hz = frequencies.front();
+        drive.amplitude = fixed_amplitude(drive.frequency_hz);
+        drive.periods =
+            static_cast<int>(std::llround(campaign.transient.duration_s * drive.frequency_hz));
+        drive.checkpoint_periods = campaign.transient.checkpoint_periods;
+        for (const DamperSpec& damper : campaign.dampers) {
+            if (damper.locked || !(damper.lock.release_time_s > 0.0)) continue;
+            const int count = damper.particles.count;
+            out.settings.push_back(
+                damper.name + ": " +
+                std::to_string(std::min(
+                    count, static_cast<int>(std::llround(damper.lock.release_fraction * count)))) +
+                " of " + std::to_string(count) +
+                " particles freed at t = " + number_text(damper.lock.release_time_s) + " s");
+        }
+        const std::string name =
+            prepared.arrangement.name + " " + number_text(task.level_g) + " " + task.level_unit;
+        progress.point_started(task, 0, drive.frequency_hz);
+        run_transient(specimen, plant, drive, checkpoint, save, [&](int periods) {
+            progress.note(name + ": run from rest, " + number_text(periods / drive.frequency_hz) +
+                          " of " + number_text(drive.periods / drive.frequency_hz) + " s");
+        });
+        out.periods_simulated = drive.periods;
+        out.transient_channels = specimen.channel_names();
+        out.transient_series = checkpoint.transient_series;
+        out.transient_envelope = checkpoint.transient_envelope;
+        return out;
+    }
     if (const auto text = store.load_checkpoint(task.key)) {
         checkpoint = parse_checkpoint(*text, checkpoint_name);
         check_fits(checkpoint, checkpoint_name, task,

@@ -27,7 +27,13 @@ struct SweepResult {
     std::vector<identification::PointRow> rows;
     std::vector<std::string> control_log;  ///< control.csv rows
     std::vector<std::string> energy_log;   ///< energy.csv rows (output.energy)
-    int resumed_points = 0;                ///< taken from the store, not simulated
+    /// A run from rest (campaign.transient): the time histories (`time_s,<channel>,...`
+    /// rows) and the envelope per period (`period,start_s,<channel>_min,...,<channel>_max,...`
+    /// rows), CSV text without the header; the headers come from `transient_channels`.
+    std::vector<std::string> transient_series;
+    std::vector<std::string> transient_envelope;
+    std::vector<std::string> transient_channels;
+    int resumed_points = 0;  ///< taken from the store, not simulated
     long long periods_simulated = 0;
 };
 

@@ -201,19 +201,37 @@ class TableBuilder {
         return add(std::move(e));
     }
 
-    /// Three numbers into any member with operator[] (Eigen::Vector3d).
+    /// Three numbers into any member with operator[] (Eigen::Vector3d), or a std::optional of
+    /// one (absent: not given).
     template <class Access>
     Ref vector3(std::string key, Access access, std::string meaning) {
+        using M = Member<Access>;
         Entry e = make(std::move(key), Type::vector3, std::move(meaning));
         e.get = [access](const void* o) -> Value {
             const auto& m = access(object(o));
-            return Value(std::vector<double>{m[0], m[1], m[2]});
+            if constexpr (detail::IsOptional<M>::value) {
+                if (!m) return Value(std::monostate{});
+                return Value(std::vector<double>{(*m)[0], (*m)[1], (*m)[2]});
+            } else {
+                return Value(std::vector<double>{m[0], m[1], m[2]});
+            }
         };
         e.set = [access](void* o, const Value& v) {
-            const auto& values = std::get<std::vector<double>>(v);
             auto& m = access(object(o));
-            for (int k = 0; k < 3; ++k) m[k] = values[static_cast<std::size_t>(k)];
+            if constexpr (detail::IsOptional<M>::value) {
+                if (std::holds_alternative<std::monostate>(v)) {
+                    m.reset();
+                    return;
+                }
+                m.emplace();
+                const auto& values = std::get<std::vector<double>>(v);
+                for (int k = 0; k < 3; ++k) (*m)[k] = values[static_cast<std::size_t>(k)];
+            } else {
+                const auto& values = std::get<std::vector<double>>(v);
+                for (int k = 0; k < 3; ++k) m[k] = values[static_cast<std::size_t>(k)];
+            }
         };
+        if constexpr (detail::IsOptional<M>::value) e.decl.presence = Presence::optional;
         return add(std::move(e));
     }
 

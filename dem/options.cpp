@@ -141,6 +141,8 @@ Violations LockOptions::validate() const {
     Violations out;
     require_in_range(out, "fraction", fraction, 0.0, 1.0, "share of locked particles [-]");
     require_non_negative(out, "release_time_s", release_time_s, "release time [s]");
+    require_in_range(out, "release_fraction", release_fraction, 0.0, 1.0,
+                     "share of particles freed at the release [-]");
     for (std::size_t k = 0; k < particle_ids.size(); ++k) {
         if (particle_ids[k] < 0) {
             out.push_back({"particle_ids[" + std::to_string(k) + "]",

@@ -122,12 +122,16 @@ struct EnclosureOptions {
     Violations validate() const;
 };
 
-/// Particles that move with the enclosure until a release time (paper 004).
+/// Particles that move with the enclosure until a release time (paper 004's electromagnet
+/// holds the granules; a weaker current frees a share of them).
 struct LockOptions {
     std::vector<int> particle_ids{};  ///< explicit set (enclosure-frame positions are frozen)
     double fraction = 0.0;            ///< else this share, lowest along local z first [-]
-    /// Time at which all locked particles are freed [s]; 0 = never (they stay locked).
+    /// Solver time at which locked particles are freed [s]; 0 = never (they stay locked).
     double release_time_s = 0.0;
+    /// Share of all particles freed then, the highest locked along local z first (farthest
+    /// from a magnet at the bottom), the rest staying locked; 1: every locked one [-].
+    double release_fraction = 1.0;
     Violations validate() const;
 };
 

@@ -272,6 +272,27 @@ void Solver::release() {
     locked_count_ = 0;
 }
 
+void Solver::release(int count) {
+    if (count >= locked_count_) {
+        release();
+        return;
+    }
+    if (count <= 0) return;
+    std::vector<int> ids;
+    ids.reserve(static_cast<std::size_t>(locked_count_));
+    for (std::size_t i = 0; i < state_.locked.size(); ++i) {
+        if (state_.locked[i]) ids.push_back(static_cast<int>(i));
+    }
+    // Ties (a flat layer) go to the lower id: the order does not depend on the sort.
+    std::stable_sort(ids.begin(), ids.end(), [&](int a, int b) {
+        return lock_local_[static_cast<std::size_t>(a)].z() >
+               lock_local_[static_cast<std::size_t>(b)].z();
+    });
+    for (int k = 0; k < count; ++k) state_.locked[static_cast<std::size_t>(ids[k])] = 0;
+    locked_count_ -= count;
+    released_ = true;
+}
+
 int Solver::locked_count() const { return locked_count_; }
 
 void Solver::snap_locked(double dt) {
@@ -699,9 +720,11 @@ void Solver::step(double dt) {
     if (!(dt > 0.0) || !std::isfinite(dt)) {
         throw std::invalid_argument("Solver::step: dt must be > 0, got " + format_value(dt));
     }
-    if (locked_count_ > 0 && time_ >= options_.lock.release_time_s &&
-        options_.lock.release_time_s > 0) {
-        release();
+    // Once: a partial release leaves some locked, and released_ keeps them so.
+    if (locked_count_ > 0 && !released_ && options_.lock.release_time_s > 0 &&
+        time_ >= options_.lock.release_time_s) {
+        release(static_cast<int>(
+            std::llround(options_.lock.release_fraction * static_cast<double>(state_.x.size()))));
     }
     if (locked_count_ > 0) {
         snap_locked(dt);
@@ -969,10 +992,6 @@ void Solver::restore(const SolverState& s) {
         }
         if (seen[l.id]++ > 0) errors.push_back(name + ": given twice");
         if (!finite(l.position_m)) errors.push_back(name + ": not finite");
-    }
-    if (s.released && !s.locked.empty()) {
-        errors.push_back("released, yet " + std::to_string(s.locked.size()) +
-                         " particles are locked");
     }
     if (!errors.empty()) {
         std::ostringstream msg;

@@ -134,8 +134,12 @@ class Solver {
     /// Locks particles to the enclosure (frozen enclosure-frame positions) until release().
     void lock(const std::vector<int>& ids);
     void release();
+    /// Frees `count` locked particles, the highest along the enclosure's z first (all when
+    /// count >= locked_count()).
+    void release(int count);
     int locked_count() const;
-    /// True once locked particles were freed (and none locked since).
+    /// True once locked particles were freed (and none locked since); some may stay locked
+    /// after a partial release (LockOptions::release_fraction).
     bool released() const { return released_; }
 
     /// Most threads one solver uses (options.threads above this are capped).

@@ -160,6 +160,23 @@ TEST(CampaignConfig, TheDiameterScatterReadsWithinItsBoundAndIsLocatedOutside) {
     }
 }
 
+TEST(CampaignConfig, ALockThatHoldsNothingOrFightsLockedIsReportedAtItsKey) {
+    const std::string base = std::string(builtin_config_text());
+    auto errors = errors_of(base + "\n[dampers.pd.lock]\nrelease_time_s = 5.0\n");
+    ASSERT_EQ(errors.size(), 1u);
+    EXPECT_NE(errors[0].find("dampers.pd.lock.release_time_s"), std::string::npos) << errors[0];
+    EXPECT_NE(errors[0].find("releases nothing"), std::string::npos) << errors[0];
+
+    errors = errors_of(replaced(base, "[dampers.pd]\n", "[dampers.pd]\nlocked = true\n") +
+                       "\n[dampers.pd.lock]\nfraction = 0.5\n");
+    ASSERT_EQ(errors.size(), 1u);
+    EXPECT_NE(errors[0].find("dampers.pd.lock.fraction"), std::string::npos) << errors[0];
+
+    errors = errors_of(base + "\n[dampers.pd.lock]\nfraction = 1.0\nrelease_fraction = 1.5\n");
+    ASSERT_EQ(errors.size(), 1u);
+    EXPECT_NE(errors[0].find("dampers.pd.lock.release_fraction"), std::string::npos) << errors[0];
+}
+
 TEST(CampaignConfig, AnUnknownFillMethodIsReportedWithItsChoices) {
     const auto errors =
         errors_of(std::string(builtin_config_text()) + "\n[dampers.pd.settle]\nfill = \"shake\"\n");

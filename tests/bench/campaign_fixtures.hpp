@@ -11,7 +11,9 @@
 #include <utility>
 #include <vector>
 
+#include "bench/campaign.hpp"
 #include "bench/campaign_config.hpp"
+#include "config/value.hpp"
 #include "core/text_file.hpp"
 #include "structure/spec.hpp"
 
@@ -117,6 +119,39 @@ inline std::vector<std::pair<std::string, std::string>> files_under(
     }
     std::sort(out.begin(), out.end());
     return out;
+}
+
+/// The [arrangements] and [structure] of a config for a 0.05 kg table on a 2e4 N/m spring
+/// (100.7 Hz), `damping_ratio` modal damping, moving vertically, driven by a force at the
+/// table; the [campaign] and any damper are the caller's.
+inline std::string table_on_a_spring(double damping_ratio) {
+    return R"(
+[arrangements.V]
+oscillation = "vertical"
+[structure]
+kind = "lumped"
+[[structure.lumped.masses]]
+name = "table"
+mass_kg = 0.05
+[[structure.lumped.springs]]
+from = "ground"
+to = "table"
+stiffness_n_per_m = 2e4
+[structure.damping]
+default_ratio = )" +
+           config::number_text(damping_ratio) + R"(
+[structure.excitation]
+point = "table"
+)";
+}
+
+/// The campaign of `config` in memory on one thread, with `store` (none: nothing kept).
+inline CampaignResult run_on_one_thread(const CampaignConfig& config,
+                                        CheckpointStore* store = nullptr) {
+    CampaignContext context;
+    context.threads = 1;
+    context.store = store;
+    return run_campaign(config, context);
 }
 
 }  // namespace sb::bench::test

@@ -214,8 +214,6 @@ low_ratio = 0.97
 high_ratio = 1.03
 count = 9
 grid_damping_ratio = 0.02
-[arrangements.V]
-oscillation = "vertical"
 [dampers.pd]
 point = "table"
 locked = true
@@ -229,24 +227,9 @@ window_periods = 12
 transient_periods = 40
 max_periods = 300
 drift_horizon_periods = 200
-[structure]
-kind = "lumped"
-[[structure.lumped.masses]]
-name = "table"
-mass_kg = 0.05
-[[structure.lumped.springs]]
-from = "ground"
-to = "table"
-stiffness_n_per_m = 2e4
-[structure.damping]
-default_ratio = 0.02
-[structure.excitation]
-point = "table"
-)";
+)" + test::table_on_a_spring(0.02);
     const CampaignConfig config = load_campaign_config_text(text, "sdof.toml");
-    CampaignContext context;
-    context.threads = 1;
-    const CampaignResult result = run_campaign(config, context);
+    const CampaignResult result = test::run_on_one_thread(config);
     ASSERT_EQ(result.levels.size(), 1u);
     const auto& level = result.levels.front();
     ASSERT_TRUE(level.circle_fit.ok()) << level.circle_fit.message;

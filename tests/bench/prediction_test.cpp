@@ -210,13 +210,19 @@ TEST(Prediction, RunningTheDescribingFunctionInTimeGivesThePredictedPoints) {
         return Complex(m * (1.0 - 0.1 * x), -m * (0.3 + 0.1 * x));
     };
     const fs::path file = write_table(dir, mass, m);
+    // Every kind of channel: the damper's force, a displacement, and a velocity read along
+    // a direction off the drive's.
     const std::string text =
         described_campaign(file, {{"tolerance", "tolerance = 0.002"},
                                   {"transient_periods", "transient_periods = 60"},
                                   {"max_periods", "max_periods = 400"},
                                   {"count = 15", "count = 7"},
                                   {"low_ratio", "low_ratio = 0.95"},
-                                  {"high_ratio", "high_ratio = 1.05"}});
+                                  {"high_ratio", "high_ratio = 1.05"}}) +
+        "\n[[campaign.channels]]\nquantity = \"damper-force\"\ndamper = \"pd\"\n"
+        "\n[[campaign.channels]]\nquantity = \"displacement\"\npoint = \"acc4\"\n"
+        "\n[[campaign.channels]]\nquantity = \"velocity\"\npoint = \"acc1\"\n"
+        "direction = [0.0, 0.6, 0.8]\n";
     const auto config = load_campaign_config_text(text, "df.toml");
     const CampaignResult predicted = predict_campaign(config, {});
     CampaignContext context;
@@ -234,6 +240,21 @@ TEST(Prediction, RunningTheDescribingFunctionInTimeGivesThePredictedPoints) {
         // the amplitude moves the FRF by less than that; the rest is the time step.
         EXPECT_NEAR(std::abs(hr) / std::abs(hp), 1.0, 0.02) << r.frequency_hz;
         EXPECT_NEAR(std::arg(hr / hp), 0.0, 0.02) << r.frequency_hz;
+        ASSERT_EQ(r.values.size(), p.values.size());
+        for (std::size_t c = 2; c < r.values.size(); ++c) {
+            const Complex cr = r.values[c].amplitude / r.values[0].amplitude;
+            const Complex cp = p.values[c].amplitude / p.values[0].amplitude;
+            EXPECT_NEAR(std::abs(cr) / std::abs(cp), 1.0, 0.02)
+                << r.frequency_hz << " Hz, " << run.recording.channels[c].name;
+            EXPECT_NEAR(std::arg(cr / cp), 0.0, 0.02)
+                << r.frequency_hz << " Hz, " << run.recording.channels[c].name;
+        }
+    }
+    const std::vector<std::string> names{"force_pd", "disp_acc4", "vel_acc1_dir"};
+    ASSERT_EQ(run.recording.channels.size(), 4u + names.size());
+    for (std::size_t k = 0; k < names.size(); ++k) {
+        EXPECT_EQ(run.recording.channels[4 + k].name, names[k]);
+        EXPECT_EQ(predicted.recording.channels[4 + k].name, names[k]);
     }
 }
 

@@ -65,7 +65,8 @@ point = "drive"
 /// sensor's axis, opposite to the force's); level = amplitude / sqrt(2) / g.
 fs::path recording_of_data(const bench::CampaignConfig& config, std::string& levels) {
     std::ifstream in(kData);
-    identification::Recording recording = bench::campaign_recording(config, {"drive"});
+    identification::Recording recording = bench::campaign_recording(
+        config, {bench::acceleration_channel("drive", config.structure.excitation.direction)});
     recording.info.kind = "measured";
     recording.info.name = "brake-reuss";
     std::map<int, double> level_of;

@@ -220,6 +220,58 @@ TEST(SolverState, LockedParticlesAreReleasedAtTheOriginalTimeAfterARestore) {
     EXPECT_TRUE(c.released());
 }
 
+TEST(SolverState, APartialReleaseFreesItsShareOnceTheHighestFirstAndARestoreKeepsTheRest) {
+    // Paper 004's electromagnet: every granule held, then 30 % of them freed at a set time,
+    // the rest held on; a restore before the release frees the same ones at the same step,
+    // one after it frees no more.
+    SolverOptions o = bed_options(TangentialLaw::coulomb_spring);
+    o.lock.fraction = 1.0;
+    o.lock.release_time_s = 3000.5 * kDt;
+    o.lock.release_fraction = 0.3;
+    Solver a(o, poured_bed(), shaking(0.0));
+    ASSERT_EQ(a.locked_count(), kCount);
+    shake(a, 0, kCapture);
+    const SolverState before = a.state();
+    Solver b(o, before, before.enclosure);
+    int release_a = -1, release_b = -1;
+    for (int k = kCapture; k < kEnd; ++k) {
+        shake(a, k, k + 1);
+        shake(b, k, k + 1);
+        if (release_a < 0 && a.locked_count() < kCount) release_a = k;
+        if (release_b < 0 && b.locked_count() < kCount) release_b = k;
+    }
+    EXPECT_EQ(release_a, 3001);
+    EXPECT_EQ(release_b, release_a);
+    const int freed = static_cast<int>(std::llround(0.3 * kCount));
+    EXPECT_EQ(a.locked_count(), kCount - freed);
+    EXPECT_EQ(b.locked_count(), a.locked_count());
+    expect_same_particles(a, b);
+
+    // The freed ones were the highest: every locked particle's frozen height is at most the
+    // lowest freed one's.
+    const SolverState after = a.state();
+    EXPECT_TRUE(after.released);
+    std::vector<std::uint8_t> held(static_cast<std::size_t>(kCount), 0);
+    double highest_held = -1e300;
+    for (const LockedParticle& l : after.locked) {
+        held[l.id] = 1;
+        highest_held = std::max(highest_held, l.position_m.z());
+    }
+    double lowest_freed = 1e300;
+    for (int i = 0; i < kCount; ++i) {
+        if (!held[static_cast<std::size_t>(i)]) {
+            lowest_freed = std::min(lowest_freed, poured_bed().positions_m[i].z());
+        }
+    }
+    EXPECT_LE(highest_held, lowest_freed + 1e-12);
+
+    // Restored after the release: the rest stay held, and no second share is freed.
+    Solver c(o, after, after.enclosure);
+    EXPECT_EQ(c.locked_count(), kCount - freed);
+    for (int k = kEnd; k < kEnd + 100; ++k) shake(c, k, k + 1);
+    EXPECT_EQ(c.locked_count(), kCount - freed);
+}
+
 /// A pose far from the one the state was taken at: moved, turned by 0.7 rad, moving.
 EnclosureState elsewhere() {
     EnclosureState e;
@@ -358,10 +410,6 @@ TEST(SolverState, StatesThatDoNotFitAreRejected) {
     s = good;
     s.wall_histories.push_back({kCount, 0, Eigen::Vector3d::Zero()});
     rejected(s, "no such particle");
-    s = good;
-    s.locked.push_back({0, Eigen::Vector3d::Zero()});
-    s.released = true;
-    rejected(s, "released, yet 1 particles are locked");
     s = good;
     s.time_s = -1.0;
     rejected(s, "time_s");

@@ -1,0 +1,217 @@
+// Runs from rest (campaign.transient): the linear response builds up from rest as the closed
+// form says, a lock releases its share of the bed at its set time, in a resumed run too, and
+// the config's errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "bench/campaign.hpp"
+#include "bench/campaign_config.hpp"
+#include "bench/campaign_plan.hpp"
+#include "bench/checkpoint_store.hpp"
+#include "bench/sweep_checkpoint.hpp"
+#include "campaign_fixtures.hpp"
+#include "config/errors.hpp"
+#include "core/units.hpp"
+
+namespace sb::bench {
+namespace {
+
+/// The cells of a CSV row.
+std::vector<double> cells(const std::string& line) {
+    std::vector<double> out;
+    std::stringstream in(line);
+    std::string cell;
+    while (std::getline(in, cell, ',')) out.push_back(std::stod(cell));
+    return out;
+}
+
+// A mass on a spring, 2 % damped, driven from rest by a fixed force at 0.8 of its natural
+// frequency.
+constexpr double kMassKg = 0.05, kStiffness = 2e4, kZeta = 0.02, kForceN = 0.5;
+
+const std::string kSdof = R"(
+[campaign]
+name = "from-rest"
+control_point = "table"
+[[campaign.channels]]
+quantity = "displacement"
+point = "table"
+[campaign.drive]
+kind = "fixed"
+amplitudes = [0.5]
+[campaign.transient]
+duration_s = 0.8
+frequency_hz = 80.0
+checkpoint_periods = 16
+[output]
+series_samples_per_period = 64
+)" + test::table_on_a_spring(0.02);
+
+/// x(t) of the mass from rest under F sin(w t): the steady state plus the free vibration
+/// that meets x(0) = 0, x'(0) = 0.
+double closed_form_displacement(double t) {
+    const double wn = std::sqrt(kStiffness / kMassKg);
+    const double w = kTwoPi * 80.0;
+    const double wd = wn * std::sqrt(1.0 - kZeta * kZeta);
+    // Steady state X = F / (k - m w^2 + i c w), x = Im{X e^{i w t}}.
+    const std::complex<double> x = kForceN / std::complex<double>(kStiffness - kMassKg * w * w,
+                                                                  2.0 * kZeta * wn * kMassKg * w);
+    const double xs0 = x.imag();      // x_s(0)
+    const double vs0 = w * x.real();  // x_s'(0)
+    const double a = -xs0;            // free part: e^{-z wn t}(a cos wd t + b sin wd t)
+    const double b = (-vs0 + kZeta * wn * a) / wd;
+    return (x * std::polar(1.0, w * t)).imag() +
+           std::exp(-kZeta * wn * t) * (a * std::cos(wd * t) + b * std::sin(wd * t));
+}
+
+TEST(TransientRun, ALinearSpecimenFromRestFollowsTheClosedForm) {
+    const CampaignConfig config = load_campaign_config_text(kSdof, "from-rest.toml");
+    const CampaignResult result = test::run_on_one_thread(config);
+    ASSERT_EQ(result.sweeps.size(), 1u);
+    const SweepResult& sweep = result.sweeps.front();
+    EXPECT_TRUE(result.recording.points.empty());
+    ASSERT_EQ(sweep.transient_channels.size(), 3u);
+    EXPECT_EQ(sweep.transient_channels[2], "disp_table");
+    ASSERT_EQ(sweep.transient_envelope.size(), 64u);  // 0.8 s at 80 Hz
+    ASSERT_EQ(sweep.transient_series.size(), 64u * 64u);
+    double largest = 0.0, worst = 0.0;
+    for (const auto& line : sweep.transient_series) {
+        const auto row = cells(line);
+        const double expected = closed_form_displacement(row[0]);
+        largest = std::max(largest, std::abs(expected));
+        worst = std::max(worst, std::abs(row[3] - expected));  // time, force, acc, disp
+        EXPECT_NEAR(row[1], kForceN * std::sin(kTwoPi * 80.0 * row[0]), 1e-6) << row[0];
+    }
+    // The beat of the start's free vibration against the drive, within 0.02 % of its peak
+    // (5e-5 measured: the step's sampling of the sine).
+    EXPECT_LT(worst, 2e-4 * largest) << "largest " << largest;
+    // The envelope holds each period's extremes of the same samples and steps.
+    for (const auto& line : sweep.transient_envelope) {
+        const auto row = cells(line);
+        ASSERT_EQ(row.size(), 2u + 2u * 3u);
+        EXPECT_LE(row[2 + 2], row[2 + 3 + 2]);  // min <= max of disp_table
+        EXPECT_GT(row[2 + 3 + 2] - row[2 + 2], 0.0);
+    }
+}
+
+/// Keeps every checkpoint saved, and fails (as a killed process would) at the n-th.
+class RecordingStore : public MemoryCheckpointStore {
+  public:
+    explicit RecordingStore(int fail_at = -1) : fail_at_(fail_at) {}
+    void save_checkpoint(const std::string& key, const std::string& text) override {
+        if (++saves_ == fail_at_) throw std::runtime_error("interrupted");
+        saved.push_back(text);
+        MemoryCheckpointStore::save_checkpoint(key, text);
+    }
+    void stop_failing() { fail_at_ = -1; }
+    std::vector<std::string> saved;
+
+  private:
+    int fail_at_;
+    int saves_ = 0;
+};
+
+TEST(TransientRun, ALockReleasesItsShareAtItsTimeInAResumedRunToo) {
+    // Every sphere held, 30 % of them freed at 0.25 s (10 of 30, between the second and the
+    // third checkpoint). Held, the bed is a rigid mass whose force is -m a; freed, the
+    // spheres rattle and the force is no longer that.
+    std::string text = kSdof;
+    text += R"(
+[dampers.pd]
+point = "table"
+[dampers.pd.particles]
+count = 30
+[dampers.pd.contact]
+normal_stiffness = 2e5
+[dampers.pd.lock]
+fraction = 1.0
+release_time_s = 0.25
+release_fraction = 0.3
+[[campaign.channels]]
+quantity = "damper-force"
+damper = "pd"
+)";
+    text.replace(text.find("duration_s = 0.8"), 16, "duration_s = 0.5");
+    text.replace(text.find("checkpoint_periods = 16"), 23, "checkpoint_periods = 8");
+    const CampaignConfig config = load_campaign_config_text(text, "release.toml");
+    CampaignContext context;
+    context.threads = 1;
+    RecordingStore whole_store;
+    context.store = &whole_store;
+    const CampaignResult whole = run_campaign(config, context);
+    ASSERT_EQ(whole.sweeps.size(), 1u);
+    EXPECT_NE(whole.sweeps.front().settings.back().find("9 of 30 particles freed at t = 0.25 s"),
+              std::string::npos)
+        << whole.sweeps.front().settings.back();
+
+    // Every checkpoint: all 30 held before 0.25 s of the damper's clock, 21 after.
+    ASSERT_EQ(whole_store.saved.size(), 5u);  // 40 periods, 8 per checkpoint
+    for (const auto& saved : whole_store.saved) {
+        const SweepCheckpoint c = parse_checkpoint(saved, "checkpoint");
+        ASSERT_TRUE(c.state.attachments.front().dem);
+        const auto& dem = *c.state.attachments.front().dem;
+        EXPECT_NEAR(dem.time_s, c.transient_periods / 80.0, 1e-9);
+        EXPECT_EQ(dem.locked.size(), dem.time_s < 0.25 ? 30u : 21u) << dem.time_s;
+    }
+
+    // Killed at the third checkpoint (after the release's period ran), resumed: the same
+    // rows, number for number.
+    RecordingStore store(3);
+    context.store = &store;
+    EXPECT_THROW(run_campaign(config, context), std::runtime_error);
+    store.stop_failing();
+    const CampaignResult resumed = run_campaign(config, context);
+    EXPECT_EQ(resumed.sweeps.front().transient_series, whole.sweeps.front().transient_series);
+    EXPECT_EQ(resumed.sweeps.front().transient_envelope, whole.sweeps.front().transient_envelope);
+
+    // Held, the force is the bed's inertia, -m a; freed, the rattling departs from it.
+    const double bed_kg = particle_mass_kg(config.campaign.dampers.front(), config.campaign.seed);
+    double held = 0.0, freed = 0.0, scale = 0.0;
+    for (const auto& line : whole.sweeps.front().transient_series) {
+        const auto row = cells(line);
+        // time, force, acc_table, disp_table, force_pd; the weight pulls along -z.
+        const double inertia = -bed_kg * row[2];
+        scale = std::max(scale, std::abs(inertia));
+        const double departure = std::abs(row[4] - (inertia - bed_kg * kStandardGravity));
+        if (row[0] < 0.24) held = std::max(held, departure);
+        if (row[0] > 0.26) freed = std::max(freed, departure);
+    }
+    EXPECT_LT(held, 0.005 * scale);  // 0.1 % measured: the coupling's step lag
+    EXPECT_GT(freed, 0.1 * scale);
+}
+
+/// The text of the ConfigException loading `text` throws, or a failure.
+std::string config_error(const std::string& text) {
+    try {
+        (void)load_campaign_config_text(text, "transient.toml");
+    } catch (const config::ConfigException& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "no ConfigException";
+    return {};
+}
+
+TEST(TransientRun, WithoutAFixedDriveOrAFrequencyItIsAConfigError) {
+    std::string text = kSdof;
+    text.replace(text.find("frequency_hz = 80.0\n"), 20, "");
+    std::string message = config_error(text);
+    EXPECT_NE(message.find("campaign.transient.frequency_hz"), std::string::npos) << message;
+    EXPECT_NE(message.find("is required"), std::string::npos) << message;
+
+    text = kSdof;
+    text.replace(text.find("kind = \"fixed\"\namplitudes = [0.5]\n"), 34, "");
+    text.replace(text.find("name = \"from-rest\"\n"), 19,
+                 "name = \"from-rest\"\nlevels_g = [1.0]\n");
+    message = config_error(text);
+    EXPECT_NE(message.find("campaign.transient.duration_s"), std::string::npos) << message;
+    EXPECT_NE(message.find("needs campaign.drive.kind = \"fixed\""), std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace sb::bench
