@@ -2,9 +2,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <sstream>
 #include <string>
 #include <tuple>
+#include <vector>
 
+#include "bench/campaign.hpp"
 #include "bench/campaign_config.hpp"
 #include "bench/campaign_plan.hpp"
 #include "bench/linear_estimate.hpp"
@@ -109,6 +112,39 @@ TEST(ShippedConfigs, Paper002DampersHoldTheMassesOfTable1) {
         EXPECT_NEAR(particle_mass_kg(d, 1) * 1e3, grams, 0.05) << name;
         EXPECT_EQ(d.enclosure.rods.enabled, grid) << name;
     }
+}
+
+/// Half the peak-to-peak tip displacement of the last period of a paper-004 run.
+double last_tip_half_swing_m(const CampaignResult& result) {
+    const auto& envelope = result.sweeps.front().transient_envelope;
+    const auto& channels = result.sweeps.front().transient_channels;
+    const std::size_t n = channels.size();
+    const std::size_t tip = static_cast<std::size_t>(
+        std::find(channels.begin(), channels.end(), "tip") - channels.begin());
+    EXPECT_LT(tip, n);
+    std::vector<double> cells;
+    std::stringstream in(envelope.back());
+    std::string cell;
+    while (std::getline(in, cell, ',')) cells.push_back(std::stod(cell));
+    return (cells[2 + n + tip] - cells[2 + tip]) / 2.0;
+}
+
+TEST(ShippedConfigs, Paper004HeldSpheresGiveThePapers22CentimetresAndFreedOnesCutThem) {
+    // docs/validation.md, paper 004: the dashpot is chosen for a locked transmissibility of
+    // 22 at the drive (+-0.22 m at 10 mm); after 15 s from rest the free vibration has
+    // decayed to e^-7.5 of the start. Freeing all three spheres at 5 s cuts the swing below
+    // a third of it (0.042 m measured with the 100 mm gap; the paper: about 0.03 m).
+    const std::string path = std::string(SB_SOURCE_DIR) + "/configs/paper004-4dof.toml";
+    CampaignConfig config = load_campaign_config(path);
+    CampaignContext context;
+    context.threads = 1;
+    const double held = last_tip_half_swing_m(run_campaign(config, context));
+    EXPECT_NEAR(held, 0.22, 0.005 * 0.22);
+    for (const std::string name : {"g1", "g2", "g3"}) {
+        set_value_text(config, "dampers." + name + ".lock.release_time_s", "5.0", "test");
+    }
+    const double freed = last_tip_half_swing_m(run_campaign(config, context));
+    EXPECT_LT(freed, held / 3.0);
 }
 
 }  // namespace
