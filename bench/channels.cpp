@@ -21,35 +21,32 @@ std::string axis_text(const Eigen::Vector3d& d) {
     return "dir";
 }
 
+/// What each quantity is called in a default channel name and in recording.toml, and its
+/// SI unit: one row per quantity.
+struct QuantityNames {
+    ChannelSpec::Quantity quantity;
+    const char* prefix;
+    const char* recorded;
+    const char* unit;
+};
+constexpr QuantityNames kQuantities[] = {
+    {ChannelSpec::Quantity::acceleration, "acc", "acceleration", "m/s^2"},
+    {ChannelSpec::Quantity::velocity, "vel", "velocity", "m/s"},
+    {ChannelSpec::Quantity::displacement, "disp", "displacement", "m"},
+    {ChannelSpec::Quantity::damper_force, "force", "force", "N"}};
+
+const QuantityNames& quantity_of(ChannelSpec::Quantity quantity) {
+    for (const auto& row : kQuantities) {
+        if (row.quantity == quantity) return row;
+    }
+    return kQuantities[0];
+}
+
 }  // namespace
 
-std::string RecordedChannel::quantity_name() const {
-    switch (quantity) {
-        case Quantity::acceleration:
-            return "acceleration";
-        case Quantity::velocity:
-            return "velocity";
-        case Quantity::displacement:
-            return "displacement";
-        case Quantity::damper_force:
-            return "force";
-    }
-    return "acceleration";
-}
+std::string RecordedChannel::quantity_name() const { return quantity_of(quantity).recorded; }
 
-std::string RecordedChannel::unit() const {
-    switch (quantity) {
-        case Quantity::acceleration:
-            return "m/s^2";
-        case Quantity::velocity:
-            return "m/s";
-        case Quantity::displacement:
-            return "m";
-        case Quantity::damper_force:
-            return "N";
-    }
-    return "m/s^2";
-}
+std::string RecordedChannel::unit() const { return quantity_of(quantity).unit; }
 
 std::string RecordedChannel::location() const {
     return quantity == Quantity::damper_force ? "damper:" + damper : point;
@@ -64,13 +61,9 @@ RecordedChannel acceleration_channel(const std::string& point, const Eigen::Vect
 }
 
 std::string default_channel_name(const ChannelSpec& channel, const Eigen::Vector3d& excitation) {
-    using Q = ChannelSpec::Quantity;
-    const char* prefix = channel.quantity == Q::acceleration   ? "acc"
-                         : channel.quantity == Q::velocity     ? "vel"
-                         : channel.quantity == Q::displacement ? "disp"
-                                                               : "force";
-    const std::string& where = channel.quantity == Q::damper_force ? channel.damper : channel.point;
-    std::string name = std::string(prefix) + "_" + where;
+    const bool force = channel.quantity == ChannelSpec::Quantity::damper_force;
+    std::string name = std::string(quantity_of(channel.quantity).prefix) + "_" +
+                       (force ? channel.damper : channel.point);
     const Eigen::Vector3d d = direction_of(channel, excitation);
     if (!d.isApprox(excitation.normalized())) name += "_" + axis_text(d);
     return name;

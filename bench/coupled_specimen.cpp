@@ -45,16 +45,20 @@ CoupledSpecimen::CoupledSpecimen(const structure::LinearModel& model,
     }
     names_.push_back(excitation_.kind == structure::ExcitationSpec::Kind::force ? "force"
                                                                                 : "base_acc");
-    for (const auto& c : channels_) {
-        names_.push_back(c.name);
-        if (c.quantity != RecordedChannel::Quantity::damper_force) continue;
-        const auto found = std::find_if(attachments_.begin(), attachments_.end(),
-                                        [&](const Attachment& a) { return a.name == c.damper; });
+    // A damper-force channel reads its attachment's load: found once, by name.
+    channel_index_.assign(channels_.size(), -1);
+    for (std::size_t c = 0; c < channels_.size(); ++c) {
+        names_.push_back(channels_[c].name);
+        if (channels_[c].quantity != RecordedChannel::Quantity::damper_force) continue;
+        const auto found =
+            std::find_if(attachments_.begin(), attachments_.end(),
+                         [&](const Attachment& a) { return a.name == channels_[c].damper; });
         if (found == attachments_.end()) {
-            throw std::invalid_argument("coupled specimen: channel " + c.name +
-                                        " reads the force of \"" + c.damper +
+            throw std::invalid_argument("coupled specimen: channel " + channels_[c].name +
+                                        " reads the force of \"" + channels_[c].damper +
                                         "\", which is attached nowhere");
         }
+        channel_index_[c] = static_cast<int>(found - attachments_.begin());
     }
 }
 
@@ -137,15 +141,9 @@ void CoupledSpecimen::set_frequency(double frequency_hz) {
         attachment_point_index_.push_back(structure_->point_index(a.point));
         add_loaded(attachment_point_index_.back());
     }
-    channel_index_.clear();
-    for (const auto& c : channels_) {
-        if (c.quantity == RecordedChannel::Quantity::damper_force) {
-            const auto found =
-                std::find_if(attachments_.begin(), attachments_.end(),
-                             [&](const Attachment& a) { return a.name == c.damper; });
-            channel_index_.push_back(static_cast<int>(found - attachments_.begin()));
-        } else {
-            channel_index_.push_back(structure_->point_index(c.point));
+    for (std::size_t c = 0; c < channels_.size(); ++c) {
+        if (channels_[c].quantity != RecordedChannel::Quantity::damper_force) {
+            channel_index_[c] = structure_->point_index(channels_[c].point);
         }
     }
     if (excitation_.kind == structure::ExcitationSpec::Kind::force) {

@@ -133,7 +133,8 @@ class CoupledSpecimen {
     std::vector<int> loaded_points_;                         ///< every point a load acts at
     std::vector<Eigen::Matrix<double, 6, 1>> point_totals_;  ///< work space, per loaded point
     std::vector<RecordedChannel> channels_;
-    /// Per channel: the structure's point index (motion), or the attachment's index (force).
+    /// Per channel: the structure's point index (motion, per frequency), or the attachment's
+    /// index (force, from the constructor).
     std::vector<int> channel_index_;
     std::vector<std::string> names_;
     Eigen::Vector3d direction_;

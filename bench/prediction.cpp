@@ -159,16 +159,21 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
                                          double f) {
         return structure::modal_accelerance(model, basis, c.point, c.direction, in, d, f);
     };
-    const auto force_of = [&](const RecordedChannel& c) -> std::optional<std::size_t> {
-        if (c.quantity != RecordedChannel::Quantity::damper_force) return std::nullopt;
-        for (std::size_t j = 0; j < dampers.size(); ++j) {
-            if (dampers[j].name == c.damper) return j;
-        }
-        throw std::invalid_argument("prediction: channel " + c.name + " reads the force of \"" +
-                                    c.damper + "\", which is not predicted");
-    };
     const std::size_t nd = dampers.size();
     const std::size_t nc = channels.size();
+    // Per channel: the damper whose force it reads (damper-force channels), found once.
+    std::vector<std::optional<std::size_t>> force_of(nc);
+    for (std::size_t c = 0; c < nc; ++c) {
+        if (channels[c].quantity != RecordedChannel::Quantity::damper_force) continue;
+        for (std::size_t j = 0; j < nd; ++j) {
+            if (dampers[j].name == channels[c].damper) force_of[c] = j;
+        }
+        if (!force_of[c]) {
+            throw std::invalid_argument("prediction: channel " + channels[c].name +
+                                        " reads the force of \"" + channels[c].damper +
+                                        "\", which is not predicted");
+        }
+    }
     Eigen::VectorXcd h_pd(static_cast<Eigen::Index>(nd));
     Eigen::MatrixXcd h_pp(static_cast<Eigen::Index>(nd), static_cast<Eigen::Index>(nd));
     Eigen::VectorXcd h_cd = Eigen::VectorXcd::Zero(static_cast<Eigen::Index>(nc));
@@ -185,7 +190,7 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
     const double w = hz_to_rad_s(frequency_hz);
     for (std::size_t c = 0; c < nc; ++c) {
         const auto cc = static_cast<Eigen::Index>(c);
-        if (const auto j = force_of(channels[c])) {
+        if (const auto j = force_of[c]) {
             // Q_j = -M_j a_j along d, read along the channel's direction.
             h_cp(cc, static_cast<Eigen::Index>(*j)) = d.dot(channels[c].direction);
             continue;
@@ -266,7 +271,7 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
         for (std::size_t c = 0; c < nc; ++c) {
             const double a1 = std::abs(s.channels[c]);
             if (!(a1 > 0.0)) continue;
-            if (const auto k = force_of(channels[c])) {
+            if (const auto k = force_of[c]) {
                 if (*k == j) {
                     s.h2[c] = values[j].h2_ratio;
                     s.h3[c] = values[j].h3_ratio;

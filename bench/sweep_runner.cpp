@@ -356,16 +356,7 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
         drive.periods =
             static_cast<int>(std::llround(campaign.transient.duration_s * drive.frequency_hz));
         drive.checkpoint_periods = campaign.transient.checkpoint_periods;
-        for (const DamperSpec& damper : campaign.dampers) {
-            if (damper.locked || !(damper.lock.release_time_s > 0.0)) continue;
-            const int count = damper.particles.count;
-            out.settings.push_back(
-                damper.name + ": " +
-                std::to_string(std::min(
-                    count, static_cast<int>(std::llround(damper.lock.release_fraction * count)))) +
-                " of " + std::to_string(count) +
-                " particles freed at t = " + number_text(damper.lock.release_time_s) + " s");
-        }
+        for (auto& line : release_events(campaign)) out.settings.push_back(std::move(line));
         const std::string name =
             prepared.arrangement.name + " " + number_text(task.level_g) + " " + task.level_unit;
         progress.point_started(task, 0, drive.frequency_hz);

@@ -2,16 +2,15 @@
 #include "bench/transient_run.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "config/value.hpp"
 
 namespace sb::bench {
-namespace {
 
-/// Shortest round-trip digits: the rows a checkpoint carries come back exact.
-std::string number(double v) { return config::number_text(v); }
-
-}  // namespace
+// Numbers in shortest round-trip digits (config::number_text): the rows a checkpoint carries
+// come back exact.
+using config::number_text;
 
 void run_transient(CoupledSpecimen& specimen, SpecimenPlant& plant, const TransientDrive& drive,
                    SweepCheckpoint& checkpoint, const std::function<void()>& save,
@@ -35,17 +34,17 @@ void run_transient(CoupledSpecimen& specimen, SpecimenPlant& plant, const Transi
         for (int p = 0; p < count; ++p) {
             const PeriodChannels& period = plant.periods()[static_cast<std::size_t>(p)];
             const double start_s = (first + p) * period_s;
-            std::string envelope = std::to_string(first + p) + "," + number(start_s);
-            for (double v : period.minimum) envelope += "," + number(v);
-            for (double v : period.maximum) envelope += "," + number(v);
+            std::string envelope = std::to_string(first + p) + "," + number_text(start_s);
+            for (double v : period.minimum) envelope += "," + number_text(v);
+            for (double v : period.maximum) envelope += "," + number_text(v);
             checkpoint.transient_envelope.push_back(std::move(envelope));
             const std::size_t samples = period.series.front().size();
             const int stride = std::max(1, steps / static_cast<int>(samples));
             for (std::size_t k = 0; k < samples; ++k) {
                 // Sample k is the end of step (k + 1) stride of the period.
                 const double t = start_s + static_cast<double>((k + 1) * stride) * period_s / steps;
-                std::string row = number(t);
-                for (const auto& channel : period.series) row += "," + number(channel[k]);
+                std::string row = number_text(t);
+                for (const auto& channel : period.series) row += "," + number_text(channel[k]);
                 checkpoint.transient_series.push_back(std::move(row));
             }
         }
@@ -54,6 +53,19 @@ void run_transient(CoupledSpecimen& specimen, SpecimenPlant& plant, const Transi
         save();
         progress(checkpoint.transient_periods);
     }
+}
+
+std::vector<std::string> release_events(const CampaignSpec& campaign) {
+    std::vector<std::string> out;
+    for (const DamperSpec& damper : campaign.dampers) {
+        if (damper.locked || !(damper.lock.release_time_s > 0.0)) continue;
+        const int count = damper.particles.count;
+        const auto freed =
+            std::min(count, static_cast<int>(std::llround(damper.lock.release_fraction * count)));
+        out.push_back(damper.name + ": " + std::to_string(freed) + " of " + std::to_string(count) +
+                      " particles freed at t = " + number_text(damper.lock.release_time_s) + " s");
+    }
+    return out;
 }
 
 std::string transient_series_header(const std::vector<std::string>& channels) {

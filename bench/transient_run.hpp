@@ -32,6 +32,9 @@ void run_transient(CoupledSpecimen& specimen, SpecimenPlant& plant, const Transi
                    SweepCheckpoint& checkpoint, const std::function<void()>& save,
                    const std::function<void(int)>& progress);
 
+/// The events a run's dampers have at set times: "pd: 9 of 30 particles freed at t = 5 s".
+std::vector<std::string> release_events(const CampaignSpec& campaign);
+
 /// Header rows of transient/<sweep>.csv and transient/<sweep>_envelope.csv.
 std::string transient_series_header(const std::vector<std::string>& channels);
 std::string transient_envelope_header(const std::vector<std::string>& channels);
