@@ -55,6 +55,20 @@ PointLoad DemDamper::weight() const {
     return {w, arm.cross(w)};
 }
 
+HeldBody DemDamper::held_body() const {
+    const dem::Solver::LockedBody locked = solver_->locked_body();
+    HeldBody body;
+    body.mass_kg = locked.mass_kg;
+    body.centre_m = offset_m_ + mount_rotation_ * locked.centre_m;
+    body.inertia_kg_m2 = mount_rotation_ * locked.inertia_kg_m2 * mount_rotation_.transpose();
+    return body;
+}
+
+void DemDamper::carry_held_inertia_in_structure() {
+    held_inertia_in_structure_ = true;
+    solver_->set_locked_inertia_external(true);
+}
+
 AttachmentState DemDamper::state() const {
     return {solver_->state(), std::nullopt, std::nullopt, std::nullopt};
 }
@@ -78,10 +92,12 @@ void DemDamper::restore(const AttachmentState& state) {
     // At the state's own pose the solver continues bitwise as if never interrupted.
     const dem::SolverState& s = dem_state(state);
     solver_ = std::make_unique<dem::Solver>(options_, s, s.enclosure);
+    solver_->set_locked_inertia_external(held_inertia_in_structure_);
 }
 
 void DemDamper::restore_at(const AttachmentState& state, const PointMotion& motion) {
     solver_ = std::make_unique<dem::Solver>(options_, dem_state(state), enclosure(motion));
+    solver_->set_locked_inertia_external(held_inertia_in_structure_);
 }
 
 DescribingFunctionDamper::DescribingFunctionDamper(

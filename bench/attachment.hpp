@@ -53,6 +53,12 @@ class DemDamper {
 
     void set_frequency(double) {}
 
+    /// The particles its lock holds now, as a rigid body at its point; mass 0 when none.
+    [[nodiscard]] HeldBody held_body() const;
+    /// From now on (restores included) the structure carries the held particles' inertia in
+    /// its mass matrix, so the load leaves it out (dem::Solver::set_locked_inertia_external).
+    void carry_held_inertia_in_structure();
+
     [[nodiscard]] const dem::Solver& solver() const { return *solver_; }
     [[nodiscard]] dem::EnclosureState enclosure(const PointMotion& motion) const;
 
@@ -61,6 +67,7 @@ class DemDamper {
     dem::SolverOptions options_;
     Eigen::Matrix3d mount_rotation_;
     Eigen::Vector3d offset_m_;
+    bool held_inertia_in_structure_ = false;
 };
 
 /// Particles as a rigid mass: part of the arrangement's structure already, it adds no load

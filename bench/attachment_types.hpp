@@ -27,6 +27,13 @@ struct PointLoad {
     Eigen::Vector3d moment_nm = Eigen::Vector3d::Zero();
 };
 
+/// Particles a lock holds as one rigid body moving with a point (structure frame, at rest).
+struct HeldBody {
+    double mass_kg = 0.0;
+    Eigen::Vector3d centre_m = Eigen::Vector3d::Zero();       ///< centre of gravity from the point
+    Eigen::Matrix3d inertia_kg_m2 = Eigen::Matrix3d::Zero();  ///< about the centre
+};
+
 /// What a describing-function damper carries between points: what it knows of its point's
 /// motion.
 struct DescribingState {

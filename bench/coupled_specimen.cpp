@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/units.hpp"
+#include "structure/rigid_mass.hpp"
 
 namespace sb::bench {
 namespace {
@@ -40,6 +41,9 @@ CoupledSpecimen::CoupledSpecimen(const structure::LinearModel& model,
       dt_max_s_(dt_max_s),
       step_multiple_(std::max(1, step_multiple)) {
     loads_.assign(attachments_.size(), Eigen::Matrix<double, 6, 1>::Zero());
+    next_loads_ = loads_;
+    held_counts_.assign(attachments_.size(), 0);
+    held_bodies_.assign(attachments_.size(), HeldBody{});
     if (!(dt_max_s_ > 0.0)) {
         throw std::invalid_argument("coupled specimen: the largest time step must be > 0");
     }
@@ -128,7 +132,8 @@ void CoupledSpecimen::set_frequency(double frequency_hz) {
         kept.q = structure_->q();
         kept.q_dot = structure_->q_dot();
     }
-    structure_ = std::make_unique<structure::ReducedModalModel>(*model_, *basis_, dt_s_);
+    structure_ =
+        std::make_unique<structure::ReducedModalModel>(active_model(), active_basis(), dt_s_);
     attachment_point_index_.clear();
     loaded_points_.clear();
     const auto add_loaded = [this](int index) {
@@ -226,8 +231,10 @@ void CoupledSpecimen::start_from_linear_steady_state(double amplitude, double ti
         structure_->set_harmonic_base_steady_state(amplitude, frequency_hz_, time_s);
     }
     const int start_modes = start.modes();
-    const Eigen::MatrixXd projection = basis_->shapes.leftCols(structure_->modes()).transpose() *
-                                       model_->mass() * start_basis_->shapes.leftCols(start_modes);
+    const structure::LinearModel& model = active_model();
+    const structure::ModalBasis& basis = active_basis();
+    const Eigen::MatrixXd projection = basis.shapes.leftCols(structure_->modes()).transpose() *
+                                       model.mass() * start_basis_->shapes.leftCols(start_modes);
     Eigen::VectorXd q_linear = projection * start.q();
     Eigen::VectorXd q_dot_linear = projection * start.q_dot();
     if (response_ratio != 1.0) {
@@ -246,10 +253,10 @@ void CoupledSpecimen::start_from_linear_steady_state(double amplitude, double ti
     const int modes = structure_->modes();
     for (std::size_t i = 0; i < attachments_.size(); ++i) {
         const PointLoad w = weight(attachments_[i]);
-        const Eigen::VectorXd f = model_->point_load(attachments_[i].point, w.force_n, w.moment_nm);
+        const Eigen::VectorXd f = model.point_load(attachments_[i].point, w.force_n, w.moment_nm);
         for (int m = 0; m < modes; ++m) {
-            const double omega = basis_->modes[static_cast<std::size_t>(m)].frequency_hz * kTwoPi;
-            q[m] += basis_->shapes.col(m).dot(f) / (omega * omega);
+            const double omega = basis.modes[static_cast<std::size_t>(m)].frequency_hz * kTwoPi;
+            q[m] += basis.shapes.col(m).dot(f) / (omega * omega);
         }
         loads_[i] << w.force_n, w.moment_nm;
     }
@@ -262,8 +269,12 @@ void CoupledSpecimen::step(double amplitude, std::vector<double>& values) {
     const double dt = dt_s_;
     for (std::size_t i = 0; i < attachments_.size(); ++i) {
         const PointLoad load = bench::step(attachments_[i], point_motion(i), dt);
-        loads_[i] << load.force_n, load.moment_nm;
+        next_loads_[i] << load.force_n, load.moment_nm;
     }
+    // A lock released particles in this step: the structure no longer carries them from its
+    // start on, with the loads at the start as they were.
+    if (held_changed()) rebuild_structure(true, amplitude);
+    std::swap(loads_, next_loads_);
     const double t_next = structure_->time_s() + dt;
     set_loads(amplitude, t_next);
     structure_->step();
@@ -283,10 +294,23 @@ void CoupledSpecimen::step(double amplitude, std::vector<double>& values) {
             case RecordedChannel::Quantity::displacement:
                 values[c + 1] = structure_->displacement(k).dot(along);
                 break;
-            case RecordedChannel::Quantity::damper_force:
-                // The force the damper applied to the structure over the step just taken.
-                values[c + 1] = loads_[static_cast<std::size_t>(k)].head<3>().dot(along);
+            case RecordedChannel::Quantity::damper_force: {
+                // The force the damper applied to the structure over the step just taken,
+                // with the inertia of the particles its lock holds, which the structure's
+                // mass carries when they are held in it: -m (a + alpha x r) at their centre
+                // (the centripetal term is second order in the rotation).
+                const auto i = static_cast<std::size_t>(k);
+                const HeldBody& held = held_bodies_[i];
+                Eigen::Vector3d force = loads_[i].head<3>();
+                if (held.mass_kg > 0.0) {
+                    const int p = attachment_point_index_[i];
+                    force -=
+                        held.mass_kg * (structure_->acceleration(p) +
+                                        structure_->angular_acceleration(p).cross(held.centre_m));
+                }
+                values[c + 1] = force.dot(along);
                 break;
+            }
         }
     }
     if (shaker_) {
@@ -355,12 +379,86 @@ void CoupledSpecimen::restore(const SpecimenState& state) {
             "coupled specimen: state has " + std::to_string(state.attachments.size()) +
             " attachments, the specimen " + std::to_string(attachments_.size()));
     }
-    loads_ = state.loads;
-    set_loads(0.0, 0.0);
-    structure_->set_state(state.q, state.q_dot, 0.0);
+    // The attachments first: their locks say which model the saved modal state belongs to.
     for (std::size_t i = 0; i < attachments_.size(); ++i) {
         bench::restore(attachments_[i], state.attachments[i]);
     }
+    if (held_changed()) rebuild_structure(false, 0.0);
+    loads_ = state.loads;
+    set_loads(0.0, 0.0);
+    structure_->set_state(state.q, state.q_dot, 0.0);
+}
+
+void CoupledSpecimen::carry_held_particles(const structure::DampingSpec& damping) {
+    if (structure_) {
+        throw std::logic_error("coupled specimen: carry the held particles before set_frequency");
+    }
+    held_damping_ = damping;
+    for (auto& a : attachments_) {
+        if (auto* dem = std::get_if<DemDamper>(&a.model)) dem->carry_held_inertia_in_structure();
+    }
+    build_held_model();
+}
+
+const structure::LinearModel& CoupledSpecimen::active_model() const {
+    return held_model_ ? *held_model_ : *model_;
+}
+
+const structure::ModalBasis& CoupledSpecimen::active_basis() const {
+    return held_basis_ ? *held_basis_ : *basis_;
+}
+
+bool CoupledSpecimen::held_changed() const {
+    if (!held_damping_) return false;
+    for (std::size_t i = 0; i < attachments_.size(); ++i) {
+        const dem::Solver* solver = dem_solver(attachments_[i]);
+        if ((solver ? solver->locked_count() : 0) != held_counts_[i]) return true;
+    }
+    return false;
+}
+
+void CoupledSpecimen::build_held_model() {
+    held_model_.reset();
+    held_basis_.reset();
+    structure::LinearModel held = *model_;
+    bool any = false;
+    for (std::size_t i = 0; i < attachments_.size(); ++i) {
+        held_counts_[i] = 0;
+        held_bodies_[i] = HeldBody{};
+        const auto* dem = std::get_if<DemDamper>(&attachments_[i].model);
+        if (!dem || dem->solver().locked_count() == 0) continue;
+        held_counts_[i] = dem->solver().locked_count();
+        const HeldBody& body = held_bodies_[i] = dem->held_body();
+        held.add_rigid_body(
+            attachments_[i].point,
+            structure::rigid_body_mass(body.mass_kg, body.inertia_kg_m2, body.centre_m));
+        any = true;
+    }
+    if (!any) return;
+    held_basis_ =
+        structure::compute_modes(held, *held_damping_, static_cast<int>(basis_->modes.size()));
+    held_model_ = std::move(held);
+}
+
+void CoupledSpecimen::rebuild_structure(bool project, double amplitude) {
+    Eigen::VectorXd x, v;
+    double time_s = 0.0;
+    if (project) {
+        const Eigen::MatrixXd shapes = active_basis().shapes.leftCols(structure_->modes());
+        x = shapes * structure_->q();
+        v = shapes * structure_->q_dot();
+        time_s = structure_->time_s();
+    }
+    build_held_model();
+    structure_ =
+        std::make_unique<structure::ReducedModalModel>(active_model(), active_basis(), dt_s_);
+    if (!project) return;
+    // Mass-normalised modes: q' = Phi'^T M' x is the M'-orthogonal projection of x on the new
+    // modes, exact when they span it (a truncated basis keeps the part they span).
+    const Eigen::MatrixXd to_modes =
+        active_basis().shapes.leftCols(structure_->modes()).transpose() * active_model().mass();
+    set_loads(amplitude, time_s);
+    structure_->set_state(to_modes * x, to_modes * v, time_s);
 }
 
 void CoupledSpecimen::carry_attachments(const std::vector<AttachmentState>& states) {

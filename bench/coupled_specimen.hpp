@@ -75,6 +75,15 @@ class CoupledSpecimen {
     /// start sits on the loaded structure's resonance. Default: the specimen's own model.
     void set_start_model(const structure::LinearModel& model, const structure::ModalBasis& basis);
 
+    /// The particles the dampers' locks hold become rigid mass of the structure (its mass
+    /// matrix, modes recomputed with `damping`), their inertia left out of the dampers'
+    /// loads; when a lock releases some, the structure changes to the model without them,
+    /// keeping its physical displacement and velocity. Loose coupling applies a load one
+    /// step late, so a held bed heavier than the modal mass at its point would otherwise be
+    /// an explicit added mass the staggered loop cannot carry (it diverges). Before
+    /// set_frequency().
+    void carry_held_particles(const structure::DampingSpec& damping);
+
     /// Linear steady state at amplitude A [N, or m/s^2 for base excitation] at the current
     /// frequency (of the start model, projected on the specimen's modes), plus the static
     /// deflection under the particles' weight: a sweep starts with no slow start-up transient.
@@ -109,6 +118,17 @@ class CoupledSpecimen {
     [[nodiscard]] PointMotion point_motion(std::size_t attachment) const;
 
   private:
+    /// The model stepped now: the structure, with the held particles when carried.
+    [[nodiscard]] const structure::LinearModel& active_model() const;
+    [[nodiscard]] const structure::ModalBasis& active_basis() const;
+    /// True when a lock freed particles the active model still carries (or the reverse).
+    [[nodiscard]] bool held_changed() const;
+    /// Builds the active model from the structure and every damper's held body.
+    void build_held_model();
+    /// Steps the structure of the active model from its state now; `project`: the state of
+    /// the model stepped so far carried over in physical coordinates (x = Phi q, then
+    /// q' = Phi'^T M' x).
+    void rebuild_structure(bool project, double amplitude);
     /// Continues every attachment from `states` (taken relative to its point's pose before
     /// the structure jumped) with its point where the structure now puts it.
     void carry_attachments(const std::vector<AttachmentState>& states);
@@ -129,8 +149,14 @@ class CoupledSpecimen {
     structure::ExcitationSpec excitation_;
     std::vector<Attachment> attachments_;
     std::vector<int> attachment_point_index_;
-    std::vector<Eigen::Matrix<double, 6, 1>> loads_;         ///< last applied, per attachment
-    std::vector<int> loaded_points_;                         ///< every point a load acts at
+    std::vector<Eigen::Matrix<double, 6, 1>> loads_;       ///< last applied, per attachment
+    std::vector<Eigen::Matrix<double, 6, 1>> next_loads_;  ///< work space of step()
+    std::optional<structure::DampingSpec> held_damping_;   ///< set: locks held by the structure
+    std::optional<structure::LinearModel> held_model_;     ///< set while particles are held
+    std::optional<structure::ModalBasis> held_basis_;
+    std::vector<int> held_counts_;  ///< per attachment: the locked particles held_model_ carries
+    std::vector<HeldBody> held_bodies_;  ///< per attachment: what held_model_ carries
+    std::vector<int> loaded_points_;     ///< every point a load acts at
     std::vector<Eigen::Matrix<double, 6, 1>> point_totals_;  ///< work space, per loaded point
     std::vector<RecordedChannel> channels_;
     /// Per channel: the structure's point index (motion, per frequency), or the attachment's

@@ -108,7 +108,8 @@ struct Described {
 
 /// One predicted point.
 struct Solution {
-    double force_n = 0.0;                ///< drive amplitude F0 (force F0 sin(w t)) [N]
+    double drive_amplitude =
+        0.0;  ///< F0 of the drive F0 sin(w t) [N, or m/s^2 of base acceleration]
     std::vector<Complex> channels;       ///< phasors per channel [channel unit]
     std::vector<double> h2, h3;          ///< estimated harmonic ratios per channel [-]
     std::vector<double> amplitudes;      ///< |a1| per damper [m/s^2]
@@ -159,6 +160,16 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
                                          double f) {
         return structure::modal_accelerance(model, basis, c.point, c.direction, in, d, f);
     };
+    // The response to a unit drive: the accelerance from the drive point, or under base
+    // excitation the absolute acceleration per unit base acceleration (the dampers' loads
+    // act on the structure relative to its base, through the same accelerances h_pp).
+    const bool base = excitation.kind == structure::ExcitationSpec::Kind::base;
+    const auto drive_response = [&](const std::string& out, const Eigen::Vector3d& along,
+                                    double f) {
+        return base
+                   ? structure::modal_base_transmissibility(model, basis, out, along, f)
+                   : structure::modal_accelerance(model, basis, out, along, excitation.point, d, f);
+    };
     const std::size_t nd = dampers.size();
     const std::size_t nc = channels.size();
     // Per channel: the damper whose force it reads (damper-force channels), found once.
@@ -181,7 +192,7 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
         Eigen::MatrixXcd::Zero(static_cast<Eigen::Index>(nc), static_cast<Eigen::Index>(nd));
     for (std::size_t j = 0; j < nd; ++j) {
         const auto jj = static_cast<Eigen::Index>(j);
-        h_pd(jj) = accelerance(dampers[j].point, excitation.point, frequency_hz);
+        h_pd(jj) = drive_response(dampers[j].point, d, frequency_hz);
         for (std::size_t k = 0; k < nd; ++k) {
             h_pp(jj, static_cast<Eigen::Index>(k)) =
                 accelerance(dampers[j].point, dampers[k].point, frequency_hz);
@@ -196,7 +207,7 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
             continue;
         }
         const Complex per = per_acceleration(channels[c].quantity, w);
-        h_cd(cc) = per * channel_accelerance(channels[c], excitation.point, frequency_hz);
+        h_cd(cc) = per * drive_response(channels[c].point, channels[c].direction, frequency_hz);
         for (std::size_t k = 0; k < nd; ++k) {
             h_cp(cc, static_cast<Eigen::Index>(k)) =
                 per * channel_accelerance(channels[c], dampers[k].point, frequency_hz);
@@ -229,13 +240,13 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
                                         h_pp * mass.asDiagonal();
         a_p = nd == 0 ? Eigen::VectorXcd() : Eigen::VectorXcd(system.partialPivLu().solve(h_pd));
         a_c = h_cd - h_cp * (mass.asDiagonal() * a_p);
-        s.force_n = fixed_drive ? *fixed_drive : target_peak / std::abs(a_c(0));
-        s.drives_tried.push_back(s.force_n);
+        s.drive_amplitude = fixed_drive ? *fixed_drive : target_peak / std::abs(a_c(0));
+        s.drives_tried.push_back(s.drive_amplitude);
         s.iterations = it;
         double change = 0.0;
         std::vector<double> next(nd);
         for (std::size_t j = 0; j < nd; ++j) {
-            next[j] = s.force_n * std::abs(a_p(static_cast<Eigen::Index>(j)));
+            next[j] = s.drive_amplitude * std::abs(a_p(static_cast<Eigen::Index>(j)));
             change = std::max(change, std::abs(next[j] - amplitude[j]) / amplitude[j]);
         }
         if (change <= kPredictConvergence) {
@@ -250,7 +261,7 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
         }
     }
     // The force phasor of F0 sin(w t) is -i F0: every response scales by it.
-    const Complex drive(0.0, -s.force_n);
+    const Complex drive(0.0, -s.drive_amplitude);
     s.amplitudes = amplitude;
     for (std::size_t j = 0; j < nd; ++j) {
         s.accelerations.push_back(a_p(static_cast<Eigen::Index>(j)) * drive);
@@ -267,7 +278,7 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
     for (std::size_t j = 0; j < nd; ++j) {
         const double q1 =
             std::abs(mass(static_cast<Eigen::Index>(j)) * a_p(static_cast<Eigen::Index>(j))) *
-            s.force_n;
+            s.drive_amplitude;
         for (std::size_t c = 0; c < nc; ++c) {
             const double a1 = std::abs(s.channels[c]);
             if (!(a1 > 0.0)) continue;
@@ -293,10 +304,10 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
     std::vector<double> q1(nd);
     for (std::size_t k = 0; k < nd; ++k) {
         const auto kk = static_cast<Eigen::Index>(k);
-        q1[k] = std::abs(mass(kk) * a_p(kk)) * s.force_n;
+        q1[k] = std::abs(mass(kk) * a_p(kk)) * s.drive_amplitude;
     }
     for (std::size_t j = 0; j < nd; ++j) {
-        const double a1 = s.force_n * std::abs(a_p(static_cast<Eigen::Index>(j)));
+        const double a1 = s.drive_amplitude * std::abs(a_p(static_cast<Eigen::Index>(j)));
         double harmonics = 0.0;
         for (std::size_t k = 0; k < nd; ++k) {
             const auto& out = dampers[j].point;
@@ -353,11 +364,6 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
                         "predict solves the structure with describing functions (or give "
                         "--characterization FILE)"));
         }
-    }
-    if (config.structure.excitation.kind != structure::ExcitationSpec::Kind::force) {
-        problems.push_back(problem(config, "structure.excitation.kind", "\"base\"",
-                                   "cannot be predicted: predict drives a force",
-                                   "base excitation is run by `shakerbench run` only"));
     }
     if (config.physics.air_drag.on() &&
         !config.structure.excitation.direction.normalized().isApprox(Eigen::Vector3d::UnitZ())) {
@@ -439,7 +445,7 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
             row.status = status_of(s);
             // The drive: the force F0 sin(w t), phasor -i F0, or through a shaker the voltage
             // whose blocked force it is, V = -i F0 / G.
-            const Complex blocked(0.0, -s.force_n);
+            const Complex blocked(0.0, -s.drive_amplitude);
             id::ChannelValue drive;
             drive.amplitude = blocked / per_volt;
             drive.rms = std::abs(drive.amplitude) / std::sqrt(2.0);

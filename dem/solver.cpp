@@ -74,7 +74,10 @@ Solver::Solver(const SolverOptions& options, const SolverState& state,
 
 Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
                const EnclosureState& enclosure, bool lock_from_options)
-    : options_(options), enclosure_(options.enclosure), enclosure_state_(enclosure) {
+    : options_(options),
+      enclosure_(options.enclosure),
+      enclosure_state_(enclosure),
+      snap_enclosure_(enclosure) {
     // SolverOptions::validate() checks the contact options too: each violation once.
     Violations v = options_.validate();
     law_ = make_contact_law(options_.contact);
@@ -310,6 +313,16 @@ void Solver::snap_locked(double dt) {
         const Eigen::Vector3d ang = inertia * (w - state_.w[i]);
         lock_force_ -= imp / dt;
         lock_moment_ -= (x - e.position_m).cross(imp / dt) + ang / dt;
+        if (locked_inertia_external_) {
+            // The share of the snap that follows the enclosure's own change of velocity since
+            // the last snap, m (v_e(t) - v_e(t - dt)) / dt: the structure's mass carries it.
+            const Eigen::Vector3d before =
+                snap_enclosure_.velocity_at(snap_enclosure_.to_world(lock_local_[i]));
+            const Eigen::Vector3d inertia_force = m * (v - before) / dt;
+            lock_force_ += inertia_force;
+            lock_moment_ += (x - e.position_m).cross(inertia_force) +
+                            inertia * (w - snap_enclosure_.angular_velocity_rad_s) / dt;
+        }
         // the enclosure does the work of the snap
         ledger_.wall_work += 0.5 * m * (v.squaredNorm() - state_.v[i].squaredNorm()) +
                              0.5 * inertia * (w.squaredNorm() - state_.w[i].squaredNorm()) -
@@ -318,6 +331,29 @@ void Solver::snap_locked(double dt) {
         state_.v[i] = v;
         state_.w[i] = w;
     }
+    snap_enclosure_ = e;
+}
+
+Solver::LockedBody Solver::locked_body() const {
+    LockedBody body;
+    Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < state_.size(); ++i) {
+        if (!state_.locked[i]) continue;
+        const double m = 1.0 / state_.inv_mass[i];
+        body.mass_kg += m;
+        first_moment += m * lock_local_[i];
+    }
+    if (body.mass_kg == 0.0) return body;
+    body.centre_m = first_moment / body.mass_kg;
+    // Each sphere's own inertia plus the parallel-axis term m (|d|^2 I - d d^T).
+    for (std::size_t i = 0; i < state_.size(); ++i) {
+        if (!state_.locked[i]) continue;
+        const Eigen::Vector3d d = lock_local_[i] - body.centre_m;
+        body.inertia_kg_m2 += Eigen::Matrix3d::Identity() / state_.inv_inertia[i] +
+                              (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose()) /
+                                  state_.inv_mass[i];
+    }
+    return body;
 }
 
 void Solver::build_neighbors() {

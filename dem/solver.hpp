@@ -142,6 +142,22 @@ class Solver {
     /// after a partial release (LockOptions::release_fraction).
     bool released() const { return released_; }
 
+    /// The locked particles as one rigid body, in the enclosure frame.
+    struct LockedBody {
+        double mass_kg = 0.0;
+        Eigen::Vector3d centre_m = Eigen::Vector3d::Zero();  ///< centre of gravity
+        /// Inertia tensor about the centre of gravity, enclosure axes [kg m^2].
+        Eigen::Matrix3d inertia_kg_m2 = Eigen::Matrix3d::Zero();
+    };
+    LockedBody locked_body() const;
+    /// True: whoever moves the enclosure carries the locked particles' inertia in its own
+    /// mass (a structure with them as rigid mass), so the wall force leaves out the force
+    /// that accelerates them with the enclosure. What remains is their weight and the
+    /// contact forces they pass on. Loose coupling, which applies a load one step late,
+    /// cannot carry a locked bed heavier than the modal mass at its point: the lagging
+    /// inertia grows by a factor m_bed / m_modal every step.
+    void set_locked_inertia_external(bool external) { locked_inertia_external_ = external; }
+
     /// Most threads one solver uses (options.threads above this are capped).
     static constexpr std::size_t kMaxChunks = 64;
 
@@ -210,6 +226,9 @@ class Solver {
     bool stepped_ = false;  ///< the contact arrays hold a step's contacts
     bool released_ = false;
     int locked_count_ = 0;
+    bool locked_inertia_external_ = false;
+    /// The enclosure at the last snap of the locked particles (their velocity then).
+    EnclosureState snap_enclosure_;
     std::size_t contact_count_ = 0;
 
     // broad phase: uniform grid in the enclosure frame, Verlet list (j > i, sorted by j)

@@ -64,6 +64,11 @@ void LinearModel::add_prescribed_base_motion(std::string_view point,
     throw std::out_of_range("unknown point '" + std::string(point) + "'");
 }
 
+void LinearModel::add_rigid_body(std::string_view name, const Eigen::Matrix<double, 6, 6>& body) {
+    const auto& op = point(name).op;
+    mass_ += op.transpose() * body * op;
+}
+
 void LinearModel::add_point(PointMap point) {
     for (auto& p : points_) {
         if (p.name == point.name) {

@@ -81,6 +81,9 @@ class LinearModel {
     /// set_base_influence).
     void add_prescribed_base_motion(std::string_view point, const Eigen::Matrix<double, 6, 1>& m);
     void set_excitation_direction(const Eigen::Vector3d& d) { direction_ = d.normalized(); }
+    /// Adds a rigid body of 6 x 6 mass `body` (structure/rigid_mass.hpp) moving with a named
+    /// point: op^T body op, from its kinetic energy 1/2 x'^T op^T body op x'.
+    void add_rigid_body(std::string_view point, const Eigen::Matrix<double, 6, 6>& body);
 
   private:
     Eigen::MatrixXd mass_;

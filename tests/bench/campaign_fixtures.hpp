@@ -123,8 +123,9 @@ inline std::vector<std::pair<std::string, std::string>> files_under(
 
 /// The [arrangements] and [structure] of a config for a 0.05 kg table on a 2e4 N/m spring
 /// (100.7 Hz), `damping_ratio` modal damping, moving vertically, driven by a force at the
-/// table; the [campaign] and any damper are the caller's.
-inline std::string table_on_a_spring(double damping_ratio) {
+/// table or, `base_driven`, through the ground; the [campaign] and any damper are the
+/// caller's.
+inline std::string table_on_a_spring(double damping_ratio, bool base_driven = false) {
     return R"(
 [arrangements.V]
 oscillation = "vertical"
@@ -141,8 +142,7 @@ stiffness_n_per_m = 2e4
 default_ratio = )" +
            config::number_text(damping_ratio) + R"(
 [structure.excitation]
-point = "table"
-)";
+)" + std::string(base_driven ? "kind = \"base\"\nsupport = \"ground\"\n" : "point = \"table\"\n");
 }
 
 /// The campaign of `config` in memory on one thread, with `store` (none: nothing kept).

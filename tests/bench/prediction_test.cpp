@@ -258,6 +258,45 @@ TEST(Prediction, RunningTheDescribingFunctionInTimeGivesThePredictedPoints) {
     }
 }
 
+TEST(Prediction, ABaseDrivenTableWithARigidBedGivesTheClosedFormTransmissibility) {
+    // A 0.05 kg table on a 2e4 N/m spring, 2 % damped, driven through the ground, carrying a
+    // damper whose apparent mass is a rigid 0.02 kg: the absolute transmissibility of the
+    // loaded table is (k + i c w) / (k - (m + m_b) w^2 + i c w), c = 2 zeta w_n m of the
+    // table alone (its modal damping), whatever level the controller holds.
+    constexpr double kTableKg = 0.05, kBedKg = 0.02, kStiffness = 2e4, kZeta = 0.02;
+    const fs::path dir = fresh_dir("predict-base");
+    const fs::path file = sb::test::write_described_damper(
+        dir, {0.3, 1.0, 3.0}, {60.0, 85.0, 110.0}, kBedKg,
+        [](double, double) { return Complex(kBedKg, 0.0); }, "V");
+    const std::string text = R"(
+[campaign]
+name = "base-predicted"
+control_point = "table"
+levels_g = [1.0]
+[campaign.frequencies]
+low_ratio = 0.8
+high_ratio = 1.2
+count = 9
+[dampers.pd]
+point = "table"
+model = "describing-function"
+characterization_file = ")" + file.string() +
+                             "\"\n" + test::table_on_a_spring(kZeta, true);
+    const auto config = load_campaign_config_text(text, "base-predicted.toml");
+    const CampaignResult result = predict_campaign(config, {});
+    ASSERT_EQ(result.recording.points.size(), 9u);
+    const double c = 2.0 * kZeta * std::sqrt(kStiffness * kTableKg);
+    for (const auto& row : result.recording.points) {
+        EXPECT_EQ(row.status, "predicted") << row.frequency_hz;
+        const double w = hz_to_rad_s(row.frequency_hz);
+        const Complex exact =
+            Complex(kStiffness, c * w) / Complex(kStiffness - (kTableKg + kBedKg) * w * w, c * w);
+        const Complex predicted = row.values[1].amplitude / row.values[0].amplitude;
+        EXPECT_NEAR(std::abs(predicted - exact), 0.0, 1e-9 * std::abs(exact)) << row.frequency_hz;
+        EXPECT_NEAR(row.values[1].rms, g_to_m_s2(1.0), 1e-9 * g_to_m_s2(1.0)) << "level held";
+    }
+}
+
 TEST(Prediction, ADemDamperCannotBePredicted) {
     const auto dem = load_campaign_config_text(paper000_h0_with({}), "dem.toml");
     try {

@@ -18,18 +18,20 @@ namespace sb::test {
 
 /// Writes dir/characterization.csv with the apparent mass `mass(a, f)` [kg] at every level
 /// [g RMS] and frequency [Hz] of the grid, a the peak acceleration [m/s^2], and the power it
-/// dissipates (-Im M = 2 P / (w |a|^2)), one filling each; returns the file.
+/// dissipates (-Im M = 2 P / (w |a|^2)), one filling each, in `arrangement`; returns the
+/// file.
 inline std::filesystem::path write_described_damper(
     const std::filesystem::path& dir, const std::vector<double>& levels_g,
     const std::vector<double>& frequencies_hz, double bed_mass_kg,
-    const std::function<std::complex<double>(double, double)>& mass) {
+    const std::function<std::complex<double>(double, double)>& mass,
+    const std::string& arrangement = "H-0") {
     bench::CharacterizationTable table;
     table.config = "made-up";
     for (const double level : levels_g) {
         for (const double f : frequencies_hz) {
             bench::CharacterizationRow r;
             r.damper = "pd";
-            r.arrangement = "H-0";
+            r.arrangement = arrangement;
             r.level_g = level;
             r.acceleration_m_s2 = std::sqrt(2.0) * g_to_m_s2(level);
             r.frequency_hz = f;
