@@ -49,16 +49,4 @@ DamperMounting damper_mounting(const ArrangementSpec& arrangement, const DamperS
     return m;
 }
 
-structure::LumpedMass mounted_enclosure_mass(const structure::LumpedMass& at_zero,
-                                             const DamperSpec& damper,
-                                             const DamperMounting& mounting) {
-    structure::LumpedMass m = at_zero;
-    // At 0 deg the enclosure frame is the structure frame shifted to mount_offset_m.
-    m.offset_m = mounting.from_enclosure(at_zero.offset_m - damper.mount_offset_m);
-    const Eigen::Matrix3d inertia =
-        mounting.rotation * at_zero.inertia_kg_m2.asDiagonal() * mounting.rotation.transpose();
-    m.inertia_kg_m2 = inertia.diagonal();
-    return m;
-}
-
 }  // namespace sb::bench

@@ -44,14 +44,22 @@ struct DamperMounting {
 /// hypotenuse) raises by c / 2 and arrangement.mount_lift_m moves further.
 DamperMounting damper_mounting(const ArrangementSpec& arrangement, const DamperSpec& damper);
 
-/// The enclosure's lumped mass (given for 0 deg, no block) moved and turned with the
-/// enclosure: its centre of gravity follows the mounting; its principal inertia about the
-/// enclosure axes is rotated, I' = R I R^T, keeping the diagonal (a lumped mass carries no
-/// products of inertia; for paper 000's enclosure the dropped product at 45 deg is
-/// (Iyy - Izz) / 2 = 1.2e-6 kg m^2, which couples the first bending mode only to the stiff
-/// lateral rotation).
-structure::LumpedMass mounted_enclosure_mass(const structure::LumpedMass& at_zero,
-                                             const DamperSpec& damper,
-                                             const DamperMounting& mounting);
+/// The enclosure's mass (a beam's lumped mass or an imported model's point mass, given for
+/// 0 deg, no block) moved and turned with the enclosure: its centre of gravity follows the
+/// mounting; its principal inertia about the enclosure axes is rotated, I' = R I R^T,
+/// keeping the diagonal (such a mass carries no products of inertia; for paper 000's
+/// enclosure the dropped product at 45 deg is (Iyy - Izz) / 2 = 1.2e-6 kg m^2, which couples
+/// the first bending mode only to the stiff lateral rotation).
+template <class Mass>
+Mass mounted_enclosure_mass(const Mass& at_zero, const DamperSpec& damper,
+                            const DamperMounting& mounting) {
+    Mass m = at_zero;
+    // At 0 deg the enclosure frame is the structure frame shifted to mount_offset_m.
+    m.offset_m = mounting.from_enclosure(at_zero.offset_m - damper.mount_offset_m);
+    const Eigen::Matrix3d inertia =
+        mounting.rotation * at_zero.inertia_kg_m2.asDiagonal() * mounting.rotation.transpose();
+    m.inertia_kg_m2 = inertia.diagonal();
+    return m;
+}
 
 }  // namespace sb::bench

@@ -273,9 +273,18 @@ structure::StructureSpec arrangement_structure(const CampaignConfig& config,
         const DamperMounting mounting = damper_mounting(arrangement, d);
         if (!d.enclosure_mass.empty()) {
             // The enclosure's mass turns and moves with the DEM enclosure.
-            for (auto& m : spec.beam.masses) {
-                if (m.name == d.enclosure_mass && m.x_m == point_position_m(spec, d.point)) {
-                    m = mounted_enclosure_mass(m, d, mounting);
+            if (spec.kind == structure::StructureSpec::Kind::matrix) {
+                for (auto& m : spec.matrix.masses) {
+                    const std::string& label = m.name.empty() ? m.point : m.name;
+                    if (label == d.enclosure_mass && m.point == d.point) {
+                        m = mounted_enclosure_mass(m, d, mounting);
+                    }
+                }
+            } else {
+                for (auto& m : spec.beam.masses) {
+                    if (m.name == d.enclosure_mass && m.x_m == point_position_m(spec, d.point)) {
+                        m = mounted_enclosure_mass(m, d, mounting);
+                    }
                 }
             }
         }

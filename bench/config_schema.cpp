@@ -754,15 +754,24 @@ Violations check_references(const CampaignConfig& config) {
         for (const auto& p : beam.points) {
             if (p.name == d.point) point_x = p.x_m;
         }
+        using Kind = structure::StructureSpec::Kind;
+        const auto& imported = config.structure.matrix.masses;
         const bool at_point =
-            config.structure.kind == structure::StructureSpec::Kind::beam &&
-            std::any_of(beam.masses.begin(), beam.masses.end(), [&](const auto& m) {
-                return m.name == d.enclosure_mass && m.x_m == point_x;
-            });
+            config.structure.kind == Kind::beam
+                ? std::any_of(
+                      beam.masses.begin(), beam.masses.end(),
+                      [&](const auto& m) { return m.name == d.enclosure_mass && m.x_m == point_x; })
+                : config.structure.kind == Kind::matrix &&
+                      std::any_of(imported.begin(), imported.end(), [&](const auto& m) {
+                          return (m.name.empty() ? m.point : m.name) == d.enclosure_mass &&
+                                 m.point == d.point;
+                      });
         if (!at_point) {
-            out.push_back(
-                {key + ".enclosure_mass", text(d.enclosure_mass),
-                 "must name a [[structure.beam.masses]] entry at point \"" + d.point + "\"", ""});
+            out.push_back({key + ".enclosure_mass", text(d.enclosure_mass),
+                           "must name a [[structure.beam.masses]] or [[structure.matrix.masses]] "
+                           "entry at point \"" +
+                               d.point + "\"",
+                           ""});
         }
     }
     return out;

@@ -484,9 +484,9 @@ std::shared_ptr<const config::Table> damper_table() {
          "the structure mass that is this damper's enclosure")
         .optional()
         .doc(
-            "name of the `[[structure.beam.masses]]` entry at the damper's point that is this "
-            "enclosure: its centre of gravity and principal inertia (given for 0 deg) move and "
-            "turn with the mounting of each arrangement");
+            "name of the `[[structure.beam.masses]]` or `[[structure.matrix.masses]]` entry at "
+            "the damper's point that is this enclosure: its centre of gravity and principal "
+            "inertia (given for 0 deg) move and turn with the mounting of each arrangement");
     t.boolean(
         "locked", [](DamperSpec & d) -> auto& { return d.locked; },
         "particles locked to the enclosure: a rigid bed whose load still goes through the "

@@ -330,6 +330,20 @@ std::shared_ptr<const config::Table> point_mass_table() {
         .unit("kg")
         .bound(Bound::positive())
         .required();
+    t.vector3(
+         "inertia_kg_m2", [](structure::PointMass & m) -> auto& { return m.inertia_kg_m2; },
+         "rotary inertia about the mass's own centre of gravity, about x, y, z")
+        .unit("kg m^2")
+        .bound(Bound::non_negative())
+        .doc(
+            "rotary inertia about the mass's own centre of gravity, about x, y, z (acts only "
+            "when the point has rotation DOFs)");
+    t.vector3(
+         "offset_m", [](structure::PointMass & m) -> auto& { return m.offset_m; },
+         "centre of gravity offset from the point")
+        .unit("m")
+        .doc(
+            "centre of gravity offset from the point (acts only when the point has rotation DOFs)");
     return t.build();
 }
 

@@ -8,7 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "bench/arrangement.hpp"
 #include "bench/campaign.hpp"
+#include "bench/campaign_config.hpp"
 #include "bench/campaign_plan.hpp"
 #include "campaign_fixtures.hpp"
 #include "config/errors.hpp"
@@ -202,6 +204,56 @@ TEST(MatrixCampaign, ASupportOfAnImportIsAConfigError) {
     const std::string message = config_error(write_chain_config("matrix-support", with_support));
     EXPECT_NE(message.find("structure.excitation.support"), std::string::npos) << message;
     EXPECT_NE(message.find("must be absent for an imported model"), std::string::npos) << message;
+}
+
+TEST(MatrixCampaign, AnEnclosureMassOfAnImportTurnsAndMovesWithTheEnclosure) {
+    // The enclosure at m2, 5 mm above the inner bottom centre at 0 deg, mounted at 90 deg:
+    // its centre of gravity rides up the enclosure's own axis, and its axial inertia turns
+    // from z to y.
+    const std::string enclosure = kBase + R"(
+[[structure.matrix.masses]]
+name = "enclosure"
+point = "m2"
+mass_kg = 0.02
+offset_m = [0.0, 0.0, 0.005]
+inertia_kg_m2 = [3.8e-6, 3.8e-6, 1.5e-6]
+)";
+    const auto path = write_chain_config("matrix-enclosure", enclosure);
+    std::string text = read_text_file(path);
+    text.replace(text.find("model = \"rigid\""), 15,
+                 "model = \"rigid\"\nenclosure_mass = \"enclosure\"");
+    text.replace(text.find("block_mass_kg = 0.05"), 20, "damper_angle_deg = 90.0");
+    write_file_atomically(path, text);
+    const CampaignConfig config = load_campaign_config(path);
+    const ArrangementSpec& arrangement = config.campaign.arrangements.front();
+    const DamperMounting m = damper_mounting(arrangement, config.campaign.dampers.front());
+    const auto spec = arrangement_structure(config, arrangement, false);
+    int found = 0;
+    for (const auto& mass : spec.matrix.masses) {
+        if (mass.name != "enclosure") continue;
+        ++found;
+        EXPECT_EQ(mass.point, "m2");
+        EXPECT_LT((mass.offset_m - (m.origin_m + 0.005 * m.rotation.col(2))).norm(), 1e-15);
+        EXPECT_NEAR(std::abs(m.rotation.col(2).y()), 1.0, 1e-12);  // the axis along y at 90 deg
+        EXPECT_NEAR(mass.inertia_kg_m2.x(), 3.8e-6, 1e-18);
+        EXPECT_NEAR(mass.inertia_kg_m2.y(), 1.5e-6, 1e-18);
+        EXPECT_NEAR(mass.inertia_kg_m2.z(), 3.8e-6, 1e-18);
+    }
+    EXPECT_EQ(found, 1);
+
+    // A mass of the import at another point is refused, naming the key.
+    text.replace(text.find("point = \"m2\"\nmass_kg = 0.02"), 12, "point = \"m1\"");
+    write_file_atomically(path, text);
+    try {
+        (void)load_campaign_config(path);
+        ADD_FAILURE() << "an enclosure mass away from the damper was accepted";
+    } catch (const config::ConfigException& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("dampers.pd.enclosure_mass"), std::string::npos) << message;
+        EXPECT_NE(message.find("[[structure.matrix.masses]] entry at point \"m2\""),
+                  std::string::npos)
+            << message;
+    }
 }
 
 }  // namespace
