@@ -389,11 +389,11 @@ void CoupledSpecimen::restore(const SpecimenState& state) {
     structure_->set_state(state.q, state.q_dot, 0.0);
 }
 
-void CoupledSpecimen::carry_held_particles(const structure::DampingSpec& damping) {
+void CoupledSpecimen::carry_held_particles() {
     if (structure_) {
         throw std::logic_error("coupled specimen: carry the held particles before set_frequency");
     }
-    held_damping_ = damping;
+    carry_held_ = true;
     for (auto& a : attachments_) {
         if (auto* dem = std::get_if<DemDamper>(&a.model)) dem->carry_held_inertia_in_structure();
     }
@@ -409,7 +409,7 @@ const structure::ModalBasis& CoupledSpecimen::active_basis() const {
 }
 
 bool CoupledSpecimen::held_changed() const {
-    if (!held_damping_) return false;
+    if (!carry_held_) return false;
     for (std::size_t i = 0; i < attachments_.size(); ++i) {
         const dem::Solver* solver = dem_solver(attachments_[i]);
         if ((solver ? solver->locked_count() : 0) != held_counts_[i]) return true;
@@ -421,6 +421,21 @@ void CoupledSpecimen::build_held_model() {
     held_model_.reset();
     held_basis_.reset();
     structure::LinearModel held = *model_;
+    if (!held.damping()) {
+        // The held particles add mass, not damping: the structure keeps its own damping
+        // matrix, C = M Phi diag(2 zeta_r w_r) Phi^T M over its modes (mass-normalised,
+        // Phi^T C Phi = diag(2 zeta_r w_r)), and the held model's ratios follow from it
+        // (compute_modes: zeta = phi^T C phi / 2 w), lower than the structure's by about
+        // sqrt(m / (m + m_held)) on a mode the bed loads.
+        const Eigen::MatrixXd m_phi = model_->mass() * basis_->shapes;
+        Eigen::VectorXd modal(static_cast<Eigen::Index>(basis_->modes.size()));
+        for (std::size_t r = 0; r < basis_->modes.size(); ++r) {
+            const auto& mode = basis_->modes[r];
+            modal(static_cast<Eigen::Index>(r)) =
+                2.0 * mode.damping_ratio * kTwoPi * mode.frequency_hz;
+        }
+        held.set_damping(m_phi * modal.asDiagonal() * m_phi.transpose());
+    }
     bool any = false;
     for (std::size_t i = 0; i < attachments_.size(); ++i) {
         held_counts_[i] = 0;
@@ -435,8 +450,9 @@ void CoupledSpecimen::build_held_model() {
         any = true;
     }
     if (!any) return;
-    held_basis_ =
-        structure::compute_modes(held, *held_damping_, static_cast<int>(basis_->modes.size()));
+    // The damping matrix gives the ratios; the spec is not read.
+    held_basis_ = structure::compute_modes(held, structure::DampingSpec{},
+                                           static_cast<int>(basis_->modes.size()));
     held_model_ = std::move(held);
 }
 

@@ -76,13 +76,13 @@ class CoupledSpecimen {
     void set_start_model(const structure::LinearModel& model, const structure::ModalBasis& basis);
 
     /// The particles the dampers' locks hold become rigid mass of the structure (its mass
-    /// matrix, modes recomputed with `damping`), their inertia left out of the dampers'
-    /// loads; when a lock releases some, the structure changes to the model without them,
-    /// keeping its physical displacement and velocity. Loose coupling applies a load one
-    /// step late, so a held bed heavier than the modal mass at its point would otherwise be
-    /// an explicit added mass the staggered loop cannot carry (it diverges). Before
-    /// set_frequency().
-    void carry_held_particles(const structure::DampingSpec& damping);
+    /// matrix, modes recomputed, its damping matrix kept: a modally damped structure's
+    /// C = M Phi diag(2 zeta w) Phi^T M), their inertia left out of the dampers' loads; when a lock
+    /// releases some, the structure changes to the model without them, keeping its physical
+    /// displacement and velocity. Loose coupling applies a load one step late, so a held bed
+    /// heavier than the modal mass at its point would otherwise be an explicit added mass the
+    /// staggered loop cannot carry (it diverges). Before set_frequency().
+    void carry_held_particles();
 
     /// Linear steady state at amplitude A [N, or m/s^2 for base excitation] at the current
     /// frequency (of the start model, projected on the specimen's modes), plus the static
@@ -151,8 +151,8 @@ class CoupledSpecimen {
     std::vector<int> attachment_point_index_;
     std::vector<Eigen::Matrix<double, 6, 1>> loads_;       ///< last applied, per attachment
     std::vector<Eigen::Matrix<double, 6, 1>> next_loads_;  ///< work space of step()
-    std::optional<structure::DampingSpec> held_damping_;   ///< set: locks held by the structure
-    std::optional<structure::LinearModel> held_model_;     ///< set while particles are held
+    bool carry_held_ = false;  ///< the structure carries what the locks hold
+    std::optional<structure::LinearModel> held_model_;  ///< set while particles are held
     std::optional<structure::ModalBasis> held_basis_;
     std::vector<int> held_counts_;  ///< per attachment: the locked particles held_model_ carries
     std::vector<HeldBody> held_bodies_;  ///< per attachment: what held_model_ carries

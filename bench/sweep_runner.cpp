@@ -307,7 +307,7 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
                              std::max(series_samples, 1));
     specimen.set_start_model(prepared.estimate_model, prepared.estimate_basis);
     // Locked particles are rigid mass of the structure until their release.
-    specimen.carry_held_particles(prepared.structure.damping);
+    specimen.carry_held_particles();
     const ShakerSpec& shaker = config.physics.shaker;
     if (shaker.on()) specimen.drive_through(shaker);
     // The force per unit drive: 1, or through a shaker its blocked force per volt (the linear

@@ -172,6 +172,12 @@ TEST(ShippedConfigs, Paper004CantileverCarriesItsHeldBedAsTheRigidMassModelDoes)
     CampaignConfig config = load_campaign_config(path);
     set_value_text(config, "campaign.transient.duration_s", "0.75", "test");
     set_value_text(config, "structure.modes", "4", "test");
+    // Undamped: the held bed adds mass to the beam and keeps its damping matrix, the rigid
+    // model gives the loaded modes the config's ratios; without damping both are the same.
+    // The contact stiffness the config's own run chooses (automatic sizing would take the
+    // undamped resonance's unbounded response for the impact speed).
+    set_value_text(config, "structure.damping.default_ratio", "0.0", "test");
+    set_value_text(config, "dampers.empid.contact.normal_stiffness", "2.8e7", "test");
     CampaignContext context;
     context.threads = 1;
     const std::vector<double> held = series_column(run_campaign(config, context), "tip");
@@ -189,7 +195,7 @@ TEST(ShippedConfigs, Paper004CantileverCarriesItsHeldBedAsTheRigidMassModelDoes)
         worst = std::max(worst, std::abs(held[k] - sag_m - rigid[k]));
     }
     EXPECT_GT(largest, 0.04);  // two periods from rest at resonance
-    // 0.49 % measured: the rigid model places the bed from a packing estimate (0.6 of the
+    // 0.71 % measured: the rigid model places the bed from a packing estimate (0.6 of the
     // cavity, a 37 mm bed) where the poured bed settled.
     EXPECT_LT(worst, 0.01 * largest) << "largest " << largest;
 }
