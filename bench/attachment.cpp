@@ -91,12 +91,15 @@ const dem::SolverState& dem_state(const AttachmentState& state) {
 void DemDamper::restore(const AttachmentState& state) {
     // At the state's own pose the solver continues bitwise as if never interrupted.
     const dem::SolverState& s = dem_state(state);
-    solver_ = std::make_unique<dem::Solver>(options_, s, s.enclosure);
-    solver_->set_locked_inertia_external(held_inertia_in_structure_);
+    continue_from(s, s.enclosure);
 }
 
 void DemDamper::restore_at(const AttachmentState& state, const PointMotion& motion) {
-    solver_ = std::make_unique<dem::Solver>(options_, dem_state(state), enclosure(motion));
+    continue_from(dem_state(state), enclosure(motion));
+}
+
+void DemDamper::continue_from(const dem::SolverState& state, const dem::EnclosureState& at) {
+    solver_ = std::make_unique<dem::Solver>(options_, state, at);
     solver_->set_locked_inertia_external(held_inertia_in_structure_);
 }
 

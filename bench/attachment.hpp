@@ -63,6 +63,10 @@ class DemDamper {
     [[nodiscard]] dem::EnclosureState enclosure(const PointMotion& motion) const;
 
   private:
+    /// A solver continuing `state` with the enclosure at `at`, carrying what this damper
+    /// carries (the held particles' inertia in the structure or not).
+    void continue_from(const dem::SolverState& state, const dem::EnclosureState& at);
+
     std::unique_ptr<dem::Solver> solver_;
     dem::SolverOptions options_;
     Eigen::Matrix3d mount_rotation_;

@@ -420,6 +420,15 @@ bool CoupledSpecimen::held_changed() const {
 void CoupledSpecimen::build_held_model() {
     held_model_.reset();
     held_basis_.reset();
+    std::fill(held_counts_.begin(), held_counts_.end(), 0);
+    std::fill(held_bodies_.begin(), held_bodies_.end(), HeldBody{});
+    const auto holds = [](const Attachment& a) {
+        const dem::Solver* solver = dem_solver(a);
+        return solver && solver->locked_count() > 0;
+    };
+    // Nothing held (every sweep without a lock, every one after its release): the structure's
+    // own model, not a copy of it.
+    if (std::none_of(attachments_.begin(), attachments_.end(), holds)) return;
     structure::LinearModel held = *model_;
     if (!held.damping()) {
         // The held particles add mass, not damping: the structure keeps its own damping
@@ -436,20 +445,15 @@ void CoupledSpecimen::build_held_model() {
         }
         held.set_damping(m_phi * modal.asDiagonal() * m_phi.transpose());
     }
-    bool any = false;
     for (std::size_t i = 0; i < attachments_.size(); ++i) {
-        held_counts_[i] = 0;
-        held_bodies_[i] = HeldBody{};
         const auto* dem = std::get_if<DemDamper>(&attachments_[i].model);
-        if (!dem || dem->solver().locked_count() == 0) continue;
+        if (!dem || !holds(attachments_[i])) continue;
         held_counts_[i] = dem->solver().locked_count();
         const HeldBody& body = held_bodies_[i] = dem->held_body();
         held.add_rigid_body(
             attachments_[i].point,
             structure::rigid_body_mass(body.mass_kg, body.inertia_kg_m2, body.centre_m));
-        any = true;
     }
-    if (!any) return;
     // The damping matrix gives the ratios; the spec is not read.
     held_basis_ = structure::compute_modes(held, structure::DampingSpec{},
                                            static_cast<int>(basis_->modes.size()));
