@@ -245,6 +245,7 @@ Violations check_matrix_files(const MatrixSpec& spec) {
     const auto rigid = size_of("rigid_body_file", spec.rigid_body_file, "rigid translations");
     const auto influence = size_of("base_influence_file", spec.base_influence_file,
                                    "influence vector of the base motion");
+    const auto damping = size_of("damping_file", spec.damping_file, "Matrix Market damping matrix");
     if (mass && mass->rows != mass->cols) {
         out.push_back({"mass_file", config::quoted(spec.mass_file.string()),
                        "must hold a square matrix, holds " + shape(*mass), ""});
@@ -264,6 +265,11 @@ Violations check_matrix_files(const MatrixSpec& spec) {
                        "must hold " + std::to_string(mass->rows) +
                            " x 1 (one value per DOF), holds " + shape(*influence),
                        "influence vector of the base motion"});
+    }
+    if (mass && damping && (damping->rows != mass->rows || damping->cols != mass->cols)) {
+        out.push_back({"damping_file", config::quoted(spec.damping_file.string()),
+                       "must hold " + shape(*mass) + " like mass_file, holds " + shape(*damping),
+                       ""});
     }
     if (mass) {
         for (const auto& [name, row] : spec.named_dofs) {
@@ -364,6 +370,15 @@ std::shared_ptr<const config::Table> matrix_table() {
          "Matrix Market stiffness matrix")
         .required()
         .doc("stiffness matrix file, same size as the mass matrix, symmetric");
+    t.file(
+         "damping_file", [](MatrixSpec & m) -> auto& { return m.damping_file; },
+         "Matrix Market damping matrix")
+        .optional()
+        .doc(
+            "damping matrix C file, same size as the mass matrix, symmetric positive "
+            "semi-definite (joints, dashpots, a damping model built with the import); it "
+            "replaces `[structure.damping]`: each mode's ratio is phi^T C phi / (2 omega), the "
+            "modal model keeping the diagonal of Phi^T C Phi");
     t.file(
          "rigid_body_file", [](MatrixSpec & m) -> auto& { return m.rigid_body_file; },
          "rigid translations")

@@ -2,8 +2,10 @@
 #include "structure/matrix_model.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 #include "structure/matrix_market.hpp"
@@ -36,6 +38,27 @@ LinearModel build_matrix_model(const MatrixSpec& matrix, const ExcitationSpec& e
     };
     require_symmetric(m, matrix.mass_file);
     require_symmetric(k, matrix.stiffness_file);
+    std::optional<Eigen::MatrixXd> c;
+    if (!matrix.damping_file.empty()) {
+        c = read_matrix_market_dense(resolve(matrix.damping_file));
+        if (c->rows() != m.rows() || c->cols() != m.cols()) {
+            throw std::invalid_argument(
+                resolve(matrix.damping_file).string() + ": " + std::to_string(c->rows()) + "x" +
+                std::to_string(c->cols()) + ", expected " + std::to_string(m.rows()) + "x" +
+                std::to_string(m.cols()) + " like the mass matrix");
+        }
+        require_symmetric(*c, matrix.damping_file);
+        // A damping matrix that feeds energy in (a negative eigenvalue beyond round-off) is
+        // bad input: the response would grow without bound.
+        const Eigen::VectorXd lambda =
+            Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(*c, Eigen::EigenvaluesOnly)
+                .eigenvalues();
+        if (lambda.size() > 0 &&
+            lambda.minCoeff() < -kSymmetryRoundOff * lambda.cwiseAbs().maxCoeff()) {
+            throw std::invalid_argument(resolve(matrix.damping_file).string() +
+                                        ": the damping matrix must be positive semi-definite");
+        }
+    }
     if (Eigen::LLT<Eigen::MatrixXd>(m).info() != Eigen::Success) {
         throw std::invalid_argument(mass_name + ": the mass matrix must be positive definite");
     }
@@ -117,6 +140,7 @@ LinearModel build_matrix_model(const MatrixSpec& matrix, const ExcitationSpec& e
     }
 
     LinearModel model(m, k);
+    if (c) model.set_damping(std::move(*c));
     model.set_excitation_direction(dir);
     Eigen::MatrixXd sample(3 * static_cast<int>(order.size()), n);
     for (std::size_t i = 0; i < order.size(); ++i) {

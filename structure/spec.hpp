@@ -123,6 +123,11 @@ struct MatrixSpec {
     /// DOF's displacement per unit base displacement along the excitation direction. Without
     /// it r is the rigid translation along that direction.
     std::filesystem::path base_influence_file;
+    /// Optional n x n Matrix Market file: a physical damping matrix C [N s/m, ...] on the same
+    /// DOFs (joints, dashpots, a damping model built with the import). It replaces
+    /// [structure.damping]: each mode's ratio is phi^T C phi / (2 omega) (the reduced modal
+    /// model keeps the diagonal of Phi^T C Phi, the full model C itself).
+    std::filesystem::path damping_file;
     /// Rigid masses added at named points (from the config, and those the bench adds).
     std::vector<PointMass> masses;
 
