@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "bench/characterization.hpp"
+#include "bench/characterization_energy.hpp"
 #include "config/errors.hpp"
 #include "core/text_file.hpp"
 #include "dem/solver.hpp"
@@ -31,6 +32,7 @@ struct CharacterizeArgs {
     bench::SteadyStateOptions steady;
     int threads = 0;
     bool quiet = false;
+    bool energy = false;
     std::vector<std::string> overrides;
     std::string command_line;
 };
@@ -82,6 +84,8 @@ int run(const CharacterizeArgs& args) {
     options.rotation = args.rotation == "mode";
     options.steady = args.steady;
     options.threads = args.threads;
+    const bool energy = args.energy || config->campaign.output.energy;
+    if (energy) options.energy_layers = config->campaign.output.energy_layers;
     options.command_line = args.command_line;
     if (!args.quiet && root) {
         options.progress = [](const std::string& line) { std::cerr << line << '\n' << std::flush; };
@@ -133,6 +137,12 @@ int run(const CharacterizeArgs& args) {
         std::filesystem::create_directories(out_dir);
         const auto file = out_dir / "characterization.csv";
         write_file_atomically(file, bench::characterization_csv_text(result.table));
+        if (energy) {
+            write_file_atomically(out_dir / "characterization_energy.csv",
+                                  bench::bed_energy_csv_text(result));
+            write_file_atomically(out_dir / "energy_spectrum.csv",
+                                  bench::bed_spectrum_csv_text(result));
+        }
         std::cout << "characterised " << result.table.rows.size() << " grid points (" << result.runs
                   << " runs over the fillings, " << result.unsettled_runs << " not settled), "
                   << result.periods << " periods simulated in " << std::fixed
@@ -201,6 +211,11 @@ void register_characterize_command(CLI::App& app, int& exit_code) {
     cmd->add_option("-j,--threads", args->threads,
                     "runs in parallel (default: all cores); the numbers do not depend on it")
         ->check(CLI::NonNegativeNumber);
+    cmd->add_flag("--energy", args->energy,
+                  "also measure where the energy goes over the steady windows: dissipated power "
+                  "per mechanism and per horizontal layer (output.energy_layers of them) in "
+                  "DIR/characterization_energy.csv, the spectra of the bed's kinetic energy and "
+                  "dissipated power in DIR/energy_spectrum.csv (as output.energy = true)");
     cmd->add_flag("-q,--quiet", args->quiet, "no progress lines");
     add_set_option(*cmd, args->overrides);
     cmd->callback([args, &exit_code] {
@@ -215,6 +230,7 @@ void register_characterize_command(CLI::App& app, int& exit_code) {
             line += " --frequency-count " + std::to_string(args->frequency_count);
         }
         line += " --seeds " + std::to_string(args->seeds) + " --rotation " + args->rotation;
+        if (args->energy) line += " --energy";
         line += overrides_text(args->overrides);
         args->command_line = line;
         exit_code = run(*args);

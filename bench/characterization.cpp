@@ -15,7 +15,9 @@
 #include "bench/resolved_config.hpp"
 #include "config/errors.hpp"
 #include "core/units.hpp"
+#include "dem/energy_periods.hpp"
 #include "dem/setup.hpp"
+#include "identification/spectrum.hpp"
 
 namespace sb::bench {
 namespace {
@@ -42,6 +44,66 @@ double relative_kinetic_energy(const dem::Solver& solver) {
     }
     return energy;
 }
+
+/// Kinetic energy of the particles in the laboratory frame [J].
+double laboratory_kinetic_energy(const dem::ParticleState& p) {
+    double energy = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        energy += 0.5 * p.v[i].squaredNorm() / p.inv_mass[i] +
+                  0.5 * p.w[i].squaredNorm() / p.inv_inertia[i];
+    }
+    return energy;
+}
+
+/// One-sided amplitudes 2 |X_k| / N, k = 1..bins, of `x` with its mean removed.
+std::vector<double> amplitude_spectrum(std::vector<double> x, std::size_t bins) {
+    double mean = 0.0;
+    for (double v : x) mean += v;
+    mean /= static_cast<double>(x.size());
+    for (double& v : x) v -= mean;
+    const auto spectrum = identification::real_spectrum(x);
+    std::vector<double> out;
+    const double scale = 2.0 / static_cast<double>(x.size());
+    for (std::size_t k = 1; k <= bins && k < spectrum.size(); ++k) {
+        out.push_back(scale * std::abs(spectrum[k]));
+    }
+    return out;
+}
+
+/// The samples every step of the bed's energy, and the ledger at every period's end.
+struct EnergySamples {
+    std::vector<double> kinetic_j;      ///< after each step
+    std::vector<double> dissipated_j;   ///< cumulative, [0] before the first step
+    std::vector<dem::EnergyLedger> at;  ///< [p]: at the start of period p
+
+    /// Where the energy went over periods [begin, end) of n steps of dt each.
+    BedEnergy over(int begin, int end, int n, double dt) const {
+        BedEnergy out;
+        const double duration = (end - begin) * n * dt;
+        const dem::EnergyInterval interval = dem::energy_between(
+            at[static_cast<std::size_t>(begin)], at[static_cast<std::size_t>(end)], duration);
+        out.normal_damping_w = interval.normal_damping / duration;
+        out.friction_w = interval.friction / duration;
+        out.rolling_w = interval.rolling / duration;
+        out.mechanical_change_w = interval.mechanical_change / duration;
+        for (double layer : interval.layer_dissipation)
+            out.layer_power_w.push_back(layer / duration);
+        const auto first = static_cast<std::size_t>(begin) * static_cast<std::size_t>(n);
+        const auto last = static_cast<std::size_t>(end) * static_cast<std::size_t>(n);
+        std::vector<double> kinetic(kinetic_j.begin() + static_cast<std::ptrdiff_t>(first),
+                                    kinetic_j.begin() + static_cast<std::ptrdiff_t>(last));
+        std::vector<double> power;
+        for (std::size_t j = first; j < last; ++j) {
+            power.push_back((dissipated_j[j + 1] - dissipated_j[j]) / dt);
+        }
+        for (double k : kinetic) out.kinetic_lab_j += k / static_cast<double>(kinetic.size());
+        out.bin_hz = 1.0 / duration;
+        const auto bins = static_cast<std::size_t>(BedEnergy::kSpectrumHarmonics * (end - begin));
+        out.kinetic_amplitude_j = amplitude_spectrum(std::move(kinetic), bins);
+        out.dissipation_amplitude_w = amplitude_spectrum(std::move(power), bins);
+        return out;
+    }
+};
 
 /// One period's measurements.
 struct Period {
@@ -136,10 +198,14 @@ ApparentMassPoint measure_apparent_mass(const EnclosureSetup& setup, const Harmo
     const double scale = out.bed_mass_kg * amplitude;
 
     std::vector<Period> periods;
+    EnergySamples samples_of_energy;
+    if (setup.bed_energy) samples_of_energy.dissipated_j.push_back(damper.solver().dissipated_j());
     const int w_periods = steady.window_periods;
     int window_end = 0;
     for (int p = 0; p < steady.max_periods; ++p) {
-        const double work_begin = damper.solver().energy().wall_work;
+        const dem::EnergyLedger at_start = damper.solver().energy();
+        if (setup.bed_energy) samples_of_energy.at.push_back(at_start);
+        const double work_begin = at_start.wall_work;
         Period period;
         double kinetic = 0.0;
         int samples = 0;
@@ -162,6 +228,11 @@ ApparentMassPoint measure_apparent_mass(const EnclosureSetup& setup, const Harmo
             if (k % stride == 0) {
                 kinetic += relative_kinetic_energy(damper.solver());
                 ++samples;
+            }
+            if (setup.bed_energy) {
+                samples_of_energy.kinetic_j.push_back(
+                    laboratory_kinetic_energy(damper.solver().particles()));
+                samples_of_energy.dissipated_j.push_back(damper.solver().dissipated_j());
             }
         }
         period.q1 *= 2.0 / n;
@@ -188,6 +259,10 @@ ApparentMassPoint measure_apparent_mass(const EnclosureSetup& setup, const Harmo
     }
     out.periods = window_end;
     const int begin = window_end - 2 * w_periods;
+    if (setup.bed_energy) {
+        samples_of_energy.at.push_back(damper.solver().energy());
+        out.energy = samples_of_energy.over(begin, window_end, n, dt);
+    }
     const double count = 2.0 * w_periods;
     std::complex<double> q1 = 0.0;
     std::complex<double> q2 = 0.0;

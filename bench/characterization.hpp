@@ -7,10 +7,12 @@
 
 #include <Eigen/Core>
 #include <complex>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,6 +58,38 @@ struct EnclosureSetup {
     Eigen::Vector3d offset_m = Eigen::Vector3d::Zero();  ///< enclosure origin from the point
     dem::ParticleSet bed;
     double dt_max_s = 0.0;  ///< the period is split into whole steps no longer than this [s]
+    /// Measure where the energy goes (ApparentMassPoint::energy); the layers are
+    /// options.energy_layers. Costs one pass over the particles per step.
+    bool bed_energy = false;
+};
+
+/// Where a characterised bed's energy goes over the steady windows (paper 002's Figs. 12 and
+/// 13): the dissipated power per mechanism and per horizontal layer, and the spectra of the
+/// bed's kinetic energy and dissipated power. Filled when EnclosureSetup::bed_energy is set.
+struct BedEnergy {
+    double normal_damping_w = 0.0;  ///< normal dashpots, mean over the windows [W]
+    double friction_w = 0.0;        ///< sliding friction [W]
+    double rolling_w = 0.0;         ///< rolling resistance [W]
+    /// Rate of change of the bed's kinetic, potential and elastic energy over the windows
+    /// [W]: the walls' power is this plus the three above, up to the ledger's error.
+    double mechanical_change_w = 0.0;
+    /// Per horizontal layer along gravity, bottom first (dem::HorizontalLayers; the count is
+    /// the solver's energy_layers) [W].
+    std::vector<double> layer_power_w;
+    /// Mean kinetic energy of the particles in the laboratory frame (what a DEM code that
+    /// moves the walls reports, the enclosure's own motion included) [J].
+    double kinetic_lab_j = 0.0;
+    /// Spacing of the spectra's bins: 1 / (length of the two windows) [Hz]; bin k of the
+    /// vectors below is at k * bin_hz, k = 1, 2, ...
+    double bin_hz = 0.0;
+    /// One-sided amplitude (2 |X_k| / N) of the laboratory kinetic energy sampled every step
+    /// over the windows, mean removed, up to kSpectrumHarmonics times the drive [J].
+    std::vector<double> kinetic_amplitude_j;
+    /// The same of the dissipated power (dissipation per step / step) [W].
+    std::vector<double> dissipation_amplitude_w;
+
+    /// Bins reported: up to this many times the drive frequency.
+    static constexpr int kSpectrumHarmonics = 8;
 };
 
 /// One characterised point of one filling.
@@ -72,6 +106,8 @@ struct ApparentMassPoint {
     int periods = 0;       ///< periods simulated
     bool settled = false;  ///< the criterion was met within the budget
     int steps_per_period = 0;
+    /// With EnclosureSetup::bed_energy: where the energy goes (else empty).
+    std::optional<BedEnergy> energy;
 };
 
 /// Runs the damper of `setup` under `drive` until steady (or the budget) and measures it.
@@ -94,7 +130,9 @@ struct CharacterizeOptions {
     /// > 0 and no frequencies_hz: this many frequencies, equally spaced over each
     /// arrangement's grid.
     int frequency_count = 0;
-    int seeds = 3;         ///< fillings: campaign.seed, campaign.seed + 1, ...
+    int seeds = 3;  ///< fillings: campaign.seed, campaign.seed + 1, ...
+    /// > 0: measure where the energy goes (BedEnergy) with this many horizontal layers.
+    int energy_layers = 0;
     bool rotation = true;  ///< the point turns with the driven mode (else translation only)
     SteadyStateOptions steady;
     int threads = 0;  ///< runs in parallel; 0: OpenMP's default
@@ -107,11 +145,22 @@ struct CharacterizeOptions {
     std::function<std::vector<std::string>(const std::vector<std::string>& run_numbers)> remote;
 };
 
+/// One run of a characterisation: a grid point on one filling.
+struct CharacterizedRun {
+    std::string damper;
+    std::string arrangement;
+    double level_g = 0.0;       ///< RMS [g]
+    double frequency_hz = 0.0;  ///< [Hz]
+    std::uint64_t seed = 0;     ///< of the filling
+    ApparentMassPoint result;
+};
+
 struct CharacterizeResult {
     CharacterizationTable table;
-    int runs = 0;            ///< grid points x fillings simulated
-    int unsettled_runs = 0;  ///< of them, not steady within the budget
-    long long periods = 0;   ///< simulated in all
+    std::vector<CharacterizedRun> runs_by_filling;  ///< every run, in the grid's order
+    int runs = 0;                                   ///< grid points x fillings simulated
+    int unsettled_runs = 0;                         ///< of them, not steady within the budget
+    long long periods = 0;                          ///< simulated in all
     double wall_time_s = 0.0;
 };
 

@@ -141,6 +141,11 @@ CharacterizationGrid plan_grid(const CampaignConfig& config, const CharacterizeO
         problems.push_back(problem(config, "seeds", std::to_string(options.seeds), "must be >= 1",
                                    "fillings per grid point"));
     }
+    if (options.energy_layers < 0) {
+        problems.push_back(problem(config, "output.energy_layers",
+                                   std::to_string(options.energy_layers), "must be >= 0",
+                                   "horizontal layers of the energy per layer"));
+    }
     for (const auto& v : options.steady.validate()) {
         problems.push_back(problem(config, v.key, v.value, v.constraint, v.meaning));
     }
@@ -226,6 +231,8 @@ ApparentMassPoint measure(const CampaignConfig& config, const CharacterizeOption
     setup.bed = particles;
     const auto& frequencies = grid.grids[bed.arrangement];
     setup.dt_max_s = std::min(bed.contact.time_step_s, 1.0 / (256.0 * frequencies.front()));
+    setup.options.energy_layers = options.energy_layers;
+    setup.bed_energy = options.energy_layers > 0;
     HarmonicDrive drive;
     drive.direction = direction;
     drive.rotation_per_translation_rad_m =
@@ -235,16 +242,48 @@ ApparentMassPoint measure(const CampaignConfig& config, const CharacterizeOption
     return measure_apparent_mass(setup, drive, options.steady);
 }
 
+/// A number as exact text (a hexadecimal float), for results passed between processes.
+std::string hex_text(double v) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%a", v);
+    return buffer;
+}
+
+/// A list as its length and its values.
+void write_list(std::ostream& out, const std::vector<double>& values) {
+    out << ' ' << values.size();
+    for (double v : values) out << ' ' << hex_text(v);
+}
+
+std::vector<double> read_list(std::istream& in) {
+    std::size_t count = 0;
+    in >> count;
+    std::vector<double> values;
+    std::string field;
+    for (std::size_t k = 0; k < count && in >> field; ++k) {
+        values.push_back(std::strtod(field.c_str(), nullptr));
+    }
+    return values;
+}
+
 /// A run's result as exact text (hexadecimal floats), and back.
 std::string point_text(const ApparentMassPoint& m) {
     std::ostringstream out;
-    char buffer[64];
     for (const double v : {m.apparent_mass_kg.real(), m.apparent_mass_kg.imag(), m.power_w,
                            m.h2_ratio, m.h3_ratio, m.kinetic_j, m.bed_mass_kg}) {
-        std::snprintf(buffer, sizeof buffer, "%a", v);
-        out << buffer << ' ';
+        out << hex_text(v) << ' ';
     }
     out << m.periods << ' ' << (m.settled ? 1 : 0) << ' ' << m.steps_per_period;
+    if (m.energy) {
+        const BedEnergy& e = *m.energy;
+        out << " energy";
+        for (double v : {e.normal_damping_w, e.friction_w, e.rolling_w, e.mechanical_change_w,
+                         e.kinetic_lab_j, e.bin_hz})
+            out << ' ' << hex_text(v);
+        write_list(out, e.layer_power_w);
+        write_list(out, e.kinetic_amplitude_j);
+        write_list(out, e.dissipation_amplitude_w);
+    }
     return out.str();
 }
 
@@ -264,6 +303,24 @@ ApparentMassPoint parse_point(const std::string& text) {
     m.kinetic_j = number(field[5]);
     m.bed_mass_kg = number(field[6]);
     m.settled = settled != 0;
+    if (std::string tag; in >> tag) {
+        std::string e[6];
+        for (auto& f : e) in >> f;
+        BedEnergy energy;
+        energy.normal_damping_w = number(e[0]);
+        energy.friction_w = number(e[1]);
+        energy.rolling_w = number(e[2]);
+        energy.mechanical_change_w = number(e[3]);
+        energy.kinetic_lab_j = number(e[4]);
+        energy.bin_hz = number(e[5]);
+        energy.layer_power_w = read_list(in);
+        energy.kinetic_amplitude_j = read_list(in);
+        energy.dissipation_amplitude_w = read_list(in);
+        if (tag != "energy" || in.fail()) {
+            throw std::runtime_error("a characterisation run's energy did not read: " + text);
+        }
+        m.energy = std::move(energy);
+    }
     return m;
 }
 
@@ -396,6 +453,12 @@ CharacterizeResult characterize(const CampaignConfig& config, const Characterize
         table.damper_hashes.emplace_back(d->name, damper_hash(config, d->name));
     table.command = options.command_line;
     table.criterion = options.steady.describe();
+    for (const auto& run : runs) {
+        const auto& bed = beds[run.bed];
+        result.runs_by_filling.push_back({bed.damper->name,
+                                          plan.arrangements[bed.arrangement].arrangement.name,
+                                          bed.level_g, run.frequency_hz, bed.seed, run.result});
+    }
     for (std::size_t a = 0; a < plan.arrangements.size(); ++a) {
         const PreparedArrangement& prepared = plan.arrangements[a];
         for (const DamperSpec* damper : dampers) {

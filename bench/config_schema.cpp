@@ -405,10 +405,10 @@ std::shared_ptr<const config::Table> output_table() {
         "energy", [](OutputSpec & o) -> auto& { return o.energy; },
         "energy.csv: per point and DEM damper, the energy per period over the steady "
         "window: wall work, dissipation by normal damping, friction and rolling, kinetic "
-        "energy, and dissipation per horizontal layer");
+        "energy, and dissipation per horizontal layer; for characterize, as --energy");
     t.integer(
          "energy_layers", [](OutputSpec & o) -> auto& { return o.energy_layers; },
-         "horizontal layers (along gravity) of energy.csv")
+         "horizontal layers (along gravity) of energy.csv and of characterize --energy")
         .bound(Bound::at_least(1))
         .when([](const OutputSpec& o) { return o.energy; }, "only with energy = true", true);
     t.choice(

@@ -108,6 +108,9 @@ class Solver {
     const Eigen::Vector3d& wall_moment() const { return wall_moment_; }
 
     EnergyLedger energy() const;
+    /// Energy dissipated since the last reset (normal dashpots, friction, rolling) [J]: the
+    /// cumulative part of energy() without its O(N + contacts) pass, for sampling every step.
+    double dissipated_j() const { return ledger_.dissipated(); }
     /// Restarts the cumulative works and the reference energy.
     void reset_energy();
 

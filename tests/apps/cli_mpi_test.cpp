@@ -285,14 +285,18 @@ TEST(CliMpi, TwoRanksShareTheSweepsAndDriftEvaluationsOfADiagnosisAndSayWhatOneP
     EXPECT_NE(diagnosis_results(two).find("[[drift]]"), std::string::npos);
 }
 
-/// characterization.csv without its command line (it names the output folder).
-std::string characterization_without_command(const fs::path& dir) {
-    std::istringstream in(file_text(dir / "characterization.csv"));
+/// A characterisation file's text without its command line (it names the output folder).
+std::string without_command(const std::string& text) {
+    std::istringstream in(text);
     std::string kept;
     for (std::string line; std::getline(in, line);) {
         if (line.rfind("# command = ", 0) != 0) kept += line + "\n";
     }
     return kept;
+}
+
+std::string characterization_without_command(const fs::path& dir) {
+    return without_command(file_text(dir / "characterization.csv"));
 }
 
 TEST(CliMpi, TwoRanksShareACharacterisationsRunsAndWriteTheTableOfOneProcess) {
@@ -301,7 +305,7 @@ TEST(CliMpi, TwoRanksShareACharacterisationsRunsAndWriteTheTableOfOneProcess) {
     const std::string characterize =
         " characterize " + std::string(SB_SOURCE_DIR) +
         "/tests/bench/golden/small-h0.toml --levels-g 0.5 --frequency-count 2 --seeds 2"
-        " --max-periods 12 --window-periods 3 --transient-periods 1 -j 1";
+        " --max-periods 12 --window-periods 3 --transient-periods 1 -j 1 --energy";
     const auto one = dir / "one-process";
     const auto r = run(characterize.substr(1) + " --out " + one.string() + " -q");
     ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -315,6 +319,11 @@ TEST(CliMpi, TwoRanksShareACharacterisationsRunsAndWriteTheTableOfOneProcess) {
     EXPECT_GT(std::stoi(match[2]), 0) << m.output;
     EXPECT_EQ(characterization_without_command(one), characterization_without_command(two));
     EXPECT_NE(characterization_without_command(two).find("\npd,H-0,0.5,"), std::string::npos);
+    // Where the energy goes, the same from the ranks.
+    for (const char* name : {"characterization_energy.csv", "energy_spectrum.csv"}) {
+        EXPECT_EQ(without_command(file_text(one / name)), without_command(file_text(two / name)))
+            << name;
+    }
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "campaign_fixtures.hpp"
 #include "core/units.hpp"
 #include "dem/setup.hpp"
+#include "tests/support/enclosure_setups.hpp"
 #include "tests/support/impact_damper.hpp"
 #include "tests/support/small_beam_config.hpp"
 
@@ -21,45 +22,12 @@ namespace sb::bench {
 namespace {
 
 using Complex = std::complex<double>;
+using sb::test::drive_along_axis;
 using sb::test::impact_phase;
+using sb::test::locked_bed;
 using sb::test::plastic_particle_apparent_mass;
-
-/// One steel sphere (3 mm) on the axis of a cylinder with an axial free gap `gap_m`, no
-/// gravity (so that the particle's motion is the textbook impact oscillator), no friction nor
-/// rolling resistance, restitution `e` against the walls. Hooke walls of 1e5 N/m: the largest
-/// overlap at the ~0.4 m/s impacts below is 14 um, 0.3 % of the 5 mm gap, and the contact
-/// lasts 0.1 ms, 1e-3 of a period at 10 Hz, so the impacts are short against the motion.
-EnclosureSetup single_particle(double gap_m, double e) {
-    EnclosureSetup s;
-    auto& o = s.options;
-    o.particles.count = 1;
-    o.particles.diameter_m = 3e-3;
-    o.enclosure.inner_diameter_m = 10e-3;
-    o.enclosure.height_m = 3e-3 + gap_m;
-    o.contact.normal_stiffness = 1e5;
-    o.contact.tangential = dem::TangentialLaw::none;
-    o.contact.rolling = dem::RollingLaw::none;
-    o.contact.particle_wall = {e, 0.0, 0.0};
-    o.contact.particle_particle = {e, 0.0, 0.0};
-    o.gravity_m_s2 = Eigen::Vector3d::Zero();
-    s.bed.positions_m = {Eigen::Vector3d(0.0, 0.0, 1.5e-3 + 0.5 * gap_m)};
-    s.bed.radii_m = {1.5e-3};
-    // About 1/50 of the contact time pi sqrt(m/k) = 0.10 ms.
-    s.dt_max_s = 2e-6;
-    return s;
-}
-
-double sphere_mass_kg(double diameter_m, double density_kg_m3) {
-    return density_kg_m3 * kPi / 6.0 * diameter_m * diameter_m * diameter_m;
-}
-
-HarmonicDrive drive_along_axis(double acceleration_m_s2, double frequency_hz) {
-    HarmonicDrive d;
-    d.direction = Eigen::Vector3d::UnitZ();
-    d.acceleration_m_s2 = acceleration_m_s2;
-    d.frequency_hz = frequency_hz;
-    return d;
-}
+using sb::test::single_particle;
+using sb::test::sphere_mass_kg;
 
 TEST(Characterization, APlasticParticleInAGapHasTheApparentMassOfItsImpactPattern) {
     constexpr double kGap = 5e-3;
@@ -114,22 +82,6 @@ TEST(Characterization, AnElasticParticleInAGapDissipatesNothing) {
     // No dissipation: within 2 % of the particle's mass, and of the plastic particle's power.
     EXPECT_NEAR(point.apparent_mass_kg.imag(), 0.0, 0.02 * m);
     EXPECT_NEAR(point.power_w, 0.0, 0.02 * plastic_power);
-}
-
-/// A bed of 30 spheres settled in the paper-000 enclosure under `gravity` (enclosure
-/// frame = structure frame: axis along z).
-EnclosureSetup locked_bed(const Eigen::Vector3d& gravity) {
-    EnclosureSetup s;
-    auto& o = s.options;
-    o.particles.count = 30;
-    o.contact.normal_stiffness = 2e4;
-    o.gravity_m_s2 = gravity;
-    o.track_energy = false;
-    s.bed = dem::settle(o, dem::fill_random(o, 1));
-    o.track_energy = true;
-    o.lock.fraction = 1.0;  // never released
-    s.dt_max_s = 1e-5;
-    return s;
 }
 
 TEST(Characterization, ALockedBedIsARigidMass) {
@@ -202,13 +154,7 @@ TEST(Characterization, TheTableIsTheSameOnOneAndTwoThreads) {
         {"levels_g", "levels_g = [2.0]"},
     });
     const auto config = load_campaign_config_text(text, "threads.toml");
-    CharacterizeOptions options;
-    options.frequency_count = 2;
-    options.seeds = 2;
-    options.steady.window_periods = 3;
-    options.steady.transient_periods = 1;
-    options.steady.max_periods = 8;
-    options.threads = 1;
+    CharacterizeOptions options = sb::test::short_characterization(2, 3, 8);
     const auto one = characterize(config, options);
     options.threads = 2;
     const auto two = characterize(config, options);
