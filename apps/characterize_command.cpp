@@ -205,6 +205,10 @@ void register_characterize_command(CLI::App& app, int& exit_code) {
                     "the last two windows' mean fundamentals agree within this fraction of a rigid "
                     "bed's force m |a1| (default 0.03)")
         ->check(CLI::PositiveNumber);
+    cmd->add_option("--energy-tolerance", args->steady.energy_tolerance,
+                    "also the bed's stored energy changes over the two windows by at most this "
+                    "share of the walls' work over them (default 0: off)")
+        ->check(CLI::NonNegativeNumber);
     cmd->add_option("--max-periods", args->steady.max_periods,
                     "budget of periods per grid point and filling (default 64)")
         ->check(CLI::PositiveNumber);

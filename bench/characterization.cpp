@@ -109,7 +109,8 @@ struct EnergySamples {
 struct Period {
     std::complex<double> q1, q2, q3;  ///< harmonics of the generalised force [N]
     double wall_work_j = 0.0;
-    double kinetic_j = 0.0;  ///< mean over the period's samples
+    double stored_at_start_j = 0.0;  ///< the bed's mechanical energy at the period's start
+    double kinetic_j = 0.0;          ///< mean over the period's samples
 };
 
 }  // namespace
@@ -128,6 +129,12 @@ Violations SteadyStateOptions::validate() const {
         out.push_back({"tolerance", format_value(tolerance), "must be > 0",
                        "window means agree within tolerance m |a1|"});
     }
+    if (!(energy_tolerance >= 0.0) || !std::isfinite(energy_tolerance)) {
+        out.push_back({"energy_tolerance", format_value(energy_tolerance),
+                       "must be >= 0 and finite",
+                       "the bed's stored energy changes over the windows by at most this share "
+                       "of the walls' work (0: off)"});
+    }
     if (max_periods < transient_periods + 2 * window_periods) {
         out.push_back({"max_periods", format_value(max_periods),
                        "must be >= transient_periods + 2 window_periods = " +
@@ -142,6 +149,10 @@ std::string SteadyStateOptions::describe() const {
     out << "after " << transient_periods << " periods, the means of the last two windows of "
         << window_periods << " periods agree within " << tolerance << " m |a1|; at most "
         << max_periods << " periods";
+    if (energy_tolerance > 0.0) {
+        out << "; and the bed's stored energy changes over the windows by at most "
+            << energy_tolerance << " of the walls' work";
+    }
     return out.str();
 }
 
@@ -196,6 +207,9 @@ ApparentMassPoint measure_apparent_mass(const EnclosureSetup& setup, const Harmo
     const int stride = std::max(1, n / 64);
     // A rigid bed of the same mass exerts m |a1|: the scale of the tolerance.
     const double scale = out.bed_mass_kg * amplitude;
+    // The kinetic energy a rigid bed carries riding its enclosure, 1/2 m (A/w)^2: the scale of
+    // the stored energy's change when the walls hardly work on the bed (a held bed).
+    const double riding_j = 0.5 * out.bed_mass_kg * std::pow(amplitude / w, 2);
 
     std::vector<Period> periods;
     EnergySamples samples_of_energy;
@@ -238,12 +252,23 @@ ApparentMassPoint measure_apparent_mass(const EnclosureSetup& setup, const Harmo
         period.q1 *= 2.0 / n;
         period.q2 *= 2.0 / n;
         period.q3 *= 2.0 / n;
-        period.wall_work_j = damper.solver().energy().wall_work - work_begin;
+        const dem::EnergyLedger at_end = damper.solver().energy();
+        period.wall_work_j = at_end.wall_work - work_begin;
+        period.stored_at_start_j = at_start.mechanical();
         period.kinetic_j = kinetic / samples;
         periods.push_back(period);
         const int count = p + 1;
         window_end = count;
         if (count < steady.transient_periods + 2 * w_periods) continue;
+        if (steady.energy_tolerance > 0.0) {
+            const auto first = static_cast<std::size_t>(count - 2 * w_periods);
+            double work = 0.0;
+            for (std::size_t k = first; k < periods.size(); ++k) work += periods[k].wall_work_j;
+            const double change = at_end.mechanical() - periods[first].stored_at_start_j;
+            if (std::abs(change) > steady.energy_tolerance * std::max(std::abs(work), riding_j)) {
+                continue;
+            }
+        }
         std::complex<double> a = 0.0;
         std::complex<double> b = 0.0;
         for (int k = count - 2 * w_periods; k < count - w_periods; ++k) {

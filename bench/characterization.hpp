@@ -35,7 +35,12 @@ struct SteadyStateOptions {
     int window_periods = 8;     ///< periods per window [-]
     double tolerance = 0.03;    ///< |mean_B - mean_A| <= tolerance m |a1| [-]
     int max_periods = 64;       ///< budget [-]
-    /// Keys: transient_periods, window_periods, tolerance, max_periods.
+    /// > 0: also the bed's stored (kinetic, potential, elastic) energy changes over the two
+    /// windows by at most this share of the walls' work over them (or of the kinetic energy
+    /// 1/2 m (A/w)^2 the bed carries riding its enclosure, if larger): a bed still filling or
+    /// draining its store is not steady, whatever its force does. 0: off [-].
+    double energy_tolerance = 0.0;
+    /// Keys: transient_periods, window_periods, tolerance, max_periods, energy_tolerance.
     [[nodiscard]] Violations validate() const;
     /// One line for the file's header.
     [[nodiscard]] std::string describe() const;
