@@ -216,11 +216,14 @@ ApparentMassPoint measure_apparent_mass(const EnclosureSetup& setup, const Harmo
     if (setup.bed_energy) samples_of_energy.dissipated_j.push_back(damper.solver().dissipated_j());
     const int w_periods = steady.window_periods;
     int window_end = 0;
+    // The ledger at the latest period boundary: one O(N + contacts) snapshot per period, the
+    // end of one period being the start of the next.
+    dem::EnergyLedger boundary = damper.solver().energy();
     for (int p = 0; p < steady.max_periods; ++p) {
-        const dem::EnergyLedger at_start = damper.solver().energy();
-        if (setup.bed_energy) samples_of_energy.at.push_back(at_start);
-        const double work_begin = at_start.wall_work;
+        if (setup.bed_energy) samples_of_energy.at.push_back(boundary);
+        const double work_begin = boundary.wall_work;
         Period period;
+        period.stored_at_start_j = boundary.mechanical();
         double kinetic = 0.0;
         int samples = 0;
         for (int k = 0; k < n; ++k) {
@@ -252,9 +255,8 @@ ApparentMassPoint measure_apparent_mass(const EnclosureSetup& setup, const Harmo
         period.q1 *= 2.0 / n;
         period.q2 *= 2.0 / n;
         period.q3 *= 2.0 / n;
-        const dem::EnergyLedger at_end = damper.solver().energy();
-        period.wall_work_j = at_end.wall_work - work_begin;
-        period.stored_at_start_j = at_start.mechanical();
+        boundary = damper.solver().energy();  // this period's end
+        period.wall_work_j = boundary.wall_work - work_begin;
         period.kinetic_j = kinetic / samples;
         periods.push_back(period);
         const int count = p + 1;
@@ -264,7 +266,7 @@ ApparentMassPoint measure_apparent_mass(const EnclosureSetup& setup, const Harmo
             const auto first = static_cast<std::size_t>(count - 2 * w_periods);
             double work = 0.0;
             for (std::size_t k = first; k < periods.size(); ++k) work += periods[k].wall_work_j;
-            const double change = at_end.mechanical() - periods[first].stored_at_start_j;
+            const double change = boundary.mechanical() - periods[first].stored_at_start_j;
             if (std::abs(change) > steady.energy_tolerance * std::max(std::abs(work), riding_j)) {
                 continue;
             }
@@ -285,7 +287,7 @@ ApparentMassPoint measure_apparent_mass(const EnclosureSetup& setup, const Harmo
     out.periods = window_end;
     const int begin = window_end - 2 * w_periods;
     if (setup.bed_energy) {
-        samples_of_energy.at.push_back(damper.solver().energy());
+        samples_of_energy.at.push_back(boundary);  // the last period's end
         out.energy = samples_of_energy.over(begin, window_end, n, dt);
     }
     const double count = 2.0 * w_periods;
