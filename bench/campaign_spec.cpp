@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dem/time_step.hpp"
+
 namespace sb::bench {
 
 Violations ArrangementSpec::validate() const {
@@ -92,6 +94,18 @@ dem::SolverOptions DamperSpec::solver_options(double normal_stiffness) const {
         s.lock.fraction = 1.0;  // never released: release_time_s stays 0
     }
     return s;
+}
+
+dem::ExcitationContact DamperSpec::excitation_contact(double peak_acceleration_m_s2,
+                                                      double frequency_hz) const {
+    // An automatic step is sized from the pair contact time, whatever fraction stands in here.
+    const dem::ExcitationContact chosen = dem::choose_contact(
+        particles, enclosure, contact.normal, contact.particle_particle.restitution,
+        contact.normal_stiffness, contact.max_overlap_fraction,
+        contact.time_step_fraction.value_or(dem::kTimeStepLadder[0]), peak_acceleration_m_s2,
+        frequency_hz);
+    if (contact.time_step_fraction) return chosen;
+    return dem::with_automatic_time_step(chosen, solver_options(chosen.stiffness));
 }
 
 Violations DamperSpec::validate() const {

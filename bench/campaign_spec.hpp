@@ -95,10 +95,11 @@ struct ContactSpec {
     /// Automatic stiffness: largest overlap as a fraction of the diameter at the largest
     /// expected impact speed [-].
     double max_overlap_fraction = 0.01;
-    /// DEM step / contact time [-]: a fortieth keeps the restitution the semi-implicit Euler
-    /// step gives within 0.6 % of the set one down to e = 0.3 (a twentieth: +3.6 % at e =
-    /// 0.3, +2.3 % at 0.5; tests/bench/production_step_test.cpp, docs/validation.md).
-    double time_step_fraction = 1.0 / 40.0;
+    /// DEM step / pair contact time [-]; absent: the largest of dem::kTimeStepLadder at
+    /// which single impacts give the converged restitution (dem::automatic_time_step_fraction:
+    /// a tenth to a twentieth for e >= 0.9, a fortieth at 0.7, finer below;
+    /// docs/validation.md).
+    std::optional<double> time_step_fraction;
     /// What an automatic stiffness is sized for: the largest level of the campaign (one
     /// stiffness, one time step for every sweep, so the damping curve does not change its
     /// numerics along the levels) or each sweep's own level.
@@ -165,6 +166,11 @@ struct DamperSpec {
     /// The DEM options of this damper with the contact stiffness `normal_stiffness`; gravity
     /// is the caller's.
     [[nodiscard]] dem::SolverOptions solver_options(double normal_stiffness) const;
+    /// The contact stiffness and DEM time step for an excitation of peak acceleration
+    /// `peak_acceleration_m_s2` at `frequency_hz` (dem::choose_contact, and
+    /// dem::with_automatic_time_step when contact.time_step_fraction is absent).
+    [[nodiscard]] dem::ExcitationContact excitation_contact(double peak_acceleration_m_s2,
+                                                            double frequency_hz) const;
     /// Constraints across keys, as the DEM module checks them: keys relative to
     /// dem::SolverOptions under "solver." and to dem::SettleOptions under "settle.".
     [[nodiscard]] Violations validate() const;

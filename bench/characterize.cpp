@@ -187,12 +187,8 @@ CharacterizationGrid plan_grid(const CampaignConfig& config, const CharacterizeO
                     bed.damper = damper;
                     bed.level_g = level;
                     bed.seed = campaign.seed + static_cast<std::uint64_t>(s);
-                    bed.contact = dem::choose_contact(
-                        damper->particles, damper->enclosure, damper->contact.normal,
-                        damper->contact.particle_particle.restitution,
-                        damper->contact.normal_stiffness, damper->contact.max_overlap_fraction,
-                        damper->contact.time_step_fraction, std::sqrt(2.0) * g_to_m_s2(level),
-                        prepared.first_mode_hz);
+                    bed.contact = damper->excitation_contact(std::sqrt(2.0) * g_to_m_s2(level),
+                                                             prepared.first_mode_hz);
                     beds.push_back(std::move(bed));
                 }
             }

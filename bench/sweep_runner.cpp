@@ -266,10 +266,7 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
             attachments.push_back(describing_function_attachment(config, damper, prepared));
             continue;
         }
-        const dem::ExcitationContact chosen = dem::choose_contact(
-            damper.particles, damper.enclosure, damper.contact.normal,
-            damper.contact.particle_particle.restitution, damper.contact.normal_stiffness,
-            damper.contact.max_overlap_fraction, damper.contact.time_step_fraction,
+        const dem::ExcitationContact chosen = damper.excitation_contact(
             std::sqrt(2.0) *
                 g_to_m_s2(damper.contact.stiffness_for == ContactSpec::StiffnessFor::campaign
                               ? task.stiffness_level_g

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
 
 #include "core/units.hpp"
 
@@ -150,6 +152,14 @@ double hertz_equivalent_radius(double r_x, double r_y) {
 
 double hertz_alpha_from_restitution(double e) {
     if (e >= 1.0) return 0.0;
+    // Fifty integrations of an impact: remembered per restitution, since every solver of a
+    // campaign (and the automatic time step's many single impacts) asks for the same few.
+    static std::mutex mutex;
+    static std::map<double, double> solved;
+    {
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (const auto it = solved.find(e); it != solved.end()) return it->second;
+    }
     double lo = 0.0, hi = 10.0;  // e(alpha) decreases monotonically
     for (int it = 0; it < 50; ++it) {
         const double mid = 0.5 * (lo + hi);
@@ -159,7 +169,10 @@ double hertz_alpha_from_restitution(double e) {
             hi = mid;
         }
     }
-    return 0.5 * (lo + hi);
+    const double alpha = 0.5 * (lo + hi);
+    const std::lock_guard<std::mutex> lock(mutex);
+    solved.emplace(e, alpha);
+    return alpha;
 }
 
 }  // namespace sb::dem

@@ -552,22 +552,30 @@ ExcitationContact choose_contact(const ParticleOptions& particles,
     in.restitution = restitution;
     in.time_step_fraction = time_step_fraction;
     ExcitationContact out;
+    // A given Hooke stiffness needs no excitation (the impact speed is then only reported
+    // when there is one); the rest sizes from it.
+    const bool needs_speed = !given_stiffness || law == NormalLaw::hertz;
+    const bool has_speed = needs_speed || in.validate().empty();
+    const AutoStiffness sized = has_speed ? auto_stiffness(in) : AutoStiffness{};
+    out.impact_speed_m_s = sized.impact_speed_m_s;
     if (!given_stiffness) {
-        const AutoStiffness chosen = auto_stiffness(in);
-        out.stiffness = chosen.stiffness;
-        out.time_step_s = chosen.time_step_s;
-        out.log = "automatic: " + describe(chosen, law);
+        out.stiffness = sized.stiffness;
+        out.time_step_s = sized.time_step_s;
+        out.pair_contact_time_s = sized.pair_contact_time_s;
+        out.log = "automatic: " + describe(sized, law);
     } else {
         out.stiffness = *given_stiffness;
-        const double contact_time = law == NormalLaw::hooke
-                                        ? hooke_contact_time(0.5 * mass, out.stiffness, restitution)
-                                        : hertz_contact_time(0.5 * mass, out.stiffness,
-                                                             auto_stiffness(in).impact_speed_m_s);
+        const double contact_time =
+            law == NormalLaw::hooke
+                ? hooke_contact_time(0.5 * mass, out.stiffness, restitution)
+                : hertz_contact_time(0.5 * mass, out.stiffness, sized.impact_speed_m_s);
         out.time_step_s = time_step_fraction * contact_time;
+        out.pair_contact_time_s = contact_time;
         out.log = "stiffness " + number_text(out.stiffness) + " (given), contact time " +
                   number_text(contact_time) + " s, time step " + number_text(out.time_step_s) +
                   " s";
     }
+    out.stiffness_log = out.log.substr(0, out.log.rfind(", time step "));
     return out;
 }
 

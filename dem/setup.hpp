@@ -149,9 +149,13 @@ double hooke_contact_time(double m_eff, double k, double restitution);
 /// The contact stiffness and time step for an excitation of one level and frequency (a
 /// stepped-sine sweep), and the line that says so in the run log.
 struct ExcitationContact {
-    double stiffness = 0.0;    ///< Hooke [N/m] or Hertz [N/m^1.5]
-    double time_step_s = 0.0;  ///< DEM time step [s]
+    double stiffness = 0.0;            ///< Hooke [N/m] or Hertz [N/m^1.5]
+    double time_step_s = 0.0;          ///< DEM time step [s]
+    double pair_contact_time_s = 0.0;  ///< of two of the largest spheres [s]
+    double impact_speed_m_s = 0.0;     ///< the largest expected impact speed (0: no
+                                       ///< excitation given, with a given Hooke stiffness) [m/s]
     std::string log;
+    std::string stiffness_log;  ///< log without its time step
 };
 
 /// The given stiffness, or auto_stiffness() sized for the largest spheres (largest_diameter_m(),

@@ -157,6 +157,7 @@ Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
                 ? Eigen::Vector3d(enclosure_state_.rotation * particles.angular_velocities_rad_s[i])
                 : enclosure_state_.angular_velocity_rad_s;
     }
+    build_size_classes();
     const auto& eo = options_.enclosure;
     // Hertz radii of curvature against the curved walls (elliptical contacts, computed once
     // per distinct radius): rods are convex, the cylinder side concave, the rest flat.
@@ -202,15 +203,24 @@ Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
     wall_delta_.assign(n * wall_cap_, 0.0);
     wall_kl_.assign(n * wall_cap_, 0.0);
     has_obstacles_ = eo.rods.enabled || !eo.plates.empty();
-    lo_x_ = enclosure_.lower().x();
-    lo_y_ = enclosure_.lower().y();
-    lo_z_ = enclosure_.lower().z();
-    hi_x_ = enclosure_.upper().x();
-    hi_y_ = enclosure_.upper().y();
-    hi_z_ = enclosure_.upper().z();
     track_energy_ = options_.track_energy;
     gravity_ = options_.gravity_m_s2;
     cylinder_radius_ = eo.shape == EnclosureShape::cylinder ? 0.5 * eo.inner_diameter_m : 0.0;
+    // deep_inside(): a centre within these bounds keeps the largest sphere off every wall by
+    // more than a rounding error (1e-9 of the cavity's size) of the exact tests in
+    // Enclosure::for_each_contact; with obstacles every sphere takes the full test.
+    {
+        const double rmax = state_.radius.empty()
+                                ? 0.0
+                                : *std::max_element(state_.radius.begin(), state_.radius.end());
+        const Eigen::Vector3d size = enclosure_.upper() - enclosure_.lower();
+        const double reach = rmax + 1e-9 * size.maxCoeff();
+        deep_lo_ = enclosure_.lower() + Eigen::Vector3d::Constant(reach);
+        deep_hi_ = enclosure_.upper() - Eigen::Vector3d::Constant(reach);
+        const double clear = cylinder_radius_ - reach;
+        deep_rho2_ = clear > 0.0 ? clear * clear : -1.0;                    // -1: never deep inside
+        if (has_obstacles_) deep_hi_ = deep_lo_ - Eigen::Vector3d::Ones();  // empty
+    }
 
     // Uniform grid in the enclosure frame, cell >= largest diameter.
     double dmax = 0.0;
@@ -243,6 +253,46 @@ Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
     }
     if (!ids.empty()) lock(ids);
     reset_energy();
+}
+
+void Solver::build_size_classes() {
+    // A bed of a few sizes (often one) has a few distinct masses and inertias: the effective
+    // masses and radius of each pair of sizes, computed once with the expressions of the
+    // contact loop from the same operands, so that the loop reads what it would have computed.
+    std::vector<double> radii;
+    const std::size_t n = state_.size();
+    size_class_.assign(n, 0);
+    class_pair_.clear();
+    class_wall_.clear();
+    class_count_ = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double r = state_.radius[i];
+        auto it = std::find(radii.begin(), radii.end(), r);
+        if (it == radii.end()) {
+            if (radii.size() == kMaxSizeClasses) return;  // many sizes: computed per contact
+            radii.push_back(r);
+            it = radii.end() - 1;
+        }
+        size_class_[i] = static_cast<std::uint8_t>(it - radii.begin());
+    }
+    const std::size_t k = radii.size();
+    std::vector<std::size_t> first(k, 0);
+    for (std::size_t i = n; i-- > 0;) first[size_class_[i]] = i;
+    class_pair_.resize(k * k);
+    class_wall_.resize(k);
+    for (std::size_t a = 0; a < k; ++a) {
+        const std::size_t i = first[a];
+        const double ri = state_.radius[i], imi = state_.inv_mass[i], iii = state_.inv_inertia[i];
+        class_wall_[a] = {1.0 / imi, ri, 1.0 / (3.5 * imi), 1.0 / iii};
+        for (std::size_t b = 0; b < k; ++b) {
+            const std::size_t j = first[b];
+            const double rj = state_.radius[j], imj = state_.inv_mass[j];
+            class_pair_[a * k + b] = {1.0 / (imi + imj), ri * rj / (ri + rj),
+                                      1.0 / (3.5 * (imi + imj)),
+                                      1.0 / (iii + state_.inv_inertia[j])};
+        }
+    }
+    class_count_ = k;
 }
 
 int Solver::thread_count() const {
@@ -457,6 +507,8 @@ void Solver::build_neighbors() {
     for (const std::uint32_t j : nbr_list_) ++rev_begin_[j + 1];
     for (std::size_t i = 0; i < n; ++i) rev_begin_[i + 1] += rev_begin_[i];
     rev_slot_.resize(slots);
+    recv_slot_.resize(slots);
+    recv_count_.assign(n, 0);
     cursor_.assign(rev_begin_.begin(), rev_begin_.end() - 1);
     for (std::size_t q = 0; q < slots; ++q) {
         rev_slot_[cursor_[nbr_list_[q]]++] = static_cast<std::uint32_t>(q);
@@ -483,17 +535,14 @@ void Solver::build_neighbors() {
     ++neighbor_builds_;
 }
 
-SB_ALWAYS_INLINE bool Solver::deep_inside(const Eigen::Vector3d& xl, double r) const {
-    // Conservative: true only if Enclosure::for_each_contact would emit nothing (the same
-    // comparisons on the flat walls, a margin on the cylinder side), so skipping it changes
-    // no result. Obstacles are always tested.
-    if (has_obstacles_) return false;
-    if (xl.z() - r < lo_z_ || xl.z() + r > hi_z_) return false;
-    if (cylinder_radius_ > 0.0) {
-        const double clear = cylinder_radius_ - r;
-        return clear > 0.0 && xl.x() * xl.x() + xl.y() * xl.y() < clear * clear * (1.0 - 1e-9);
-    }
-    return xl.x() - r >= lo_x_ && xl.x() + r <= hi_x_ && xl.y() - r >= lo_y_ && xl.y() + r <= hi_y_;
+SB_ALWAYS_INLINE bool Solver::deep_inside(const Eigen::Vector3d& xl) const {
+    // Conservative: true only if Enclosure::for_each_contact would emit nothing, so skipping
+    // it changes no result. The bounds are the largest sphere's with a margin (constructor):
+    // one comparison per wall holds for every radius; every comparison is false for NaN.
+    if (!(xl.z() >= deep_lo_.z() && xl.z() <= deep_hi_.z())) return false;
+    if (cylinder_radius_ > 0.0) return xl.x() * xl.x() + xl.y() * xl.y() < deep_rho2_;
+    return xl.x() >= deep_lo_.x() && xl.x() <= deep_hi_.x() && xl.y() >= deep_lo_.y() &&
+           xl.y() <= deep_hi_.y();
 }
 
 template <class Law>
@@ -505,6 +554,7 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
     Accumulated a;
     const Eigen::Vector3d xi = state_.x[i], vi = state_.v[i], wi = state_.w[i];
     const double ri = state_.radius[i], imi = state_.inv_mass[i], iii = state_.inv_inertia[i];
+    const std::size_t ci = class_count_ > 0 ? size_class_[i] : 0;
     bool overlap = false;
     // Pairs: slots of i's Verlet list (j > i); the partner's share goes to the slot.
     {
@@ -543,12 +593,20 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
             const Eigen::Vector3d bi = -(ri - 0.5 * delta) * n;  // branch vector of i
             const Eigen::Vector3d bj = (rj - 0.5 * delta) * n;
             const Eigen::Vector3d vrel = vi + wi.cross(bi) - v[j] - w[j].cross(bj);
-            const double imj = inv_mass[j];
-            k.m_eff = 1.0 / (imi + imj);
-            k.r_eff = ri * rj / (ri + rj);
+            if (class_count_ > 0) {  // no division per contact
+                const MassConstants& mc = class_pair_[ci * class_count_ + size_class_[j]];
+                k.m_eff = mc.m_eff;
+                k.r_eff = mc.r_eff;
+                k.m_t = mc.m_t;
+                k.i_eff = mc.i_eff;
+            } else {
+                const double imj = inv_mass[j];
+                k.m_eff = 1.0 / (imi + imj);
+                k.r_eff = ri * rj / (ri + rj);
+                k.m_t = 1.0 / (3.5 * (imi + imj));
+                k.i_eff = 1.0 / (iii + inv_inertia[j]);
+            }
             k.r_hertz = k.r_eff;
-            k.m_t = 1.0 / (3.5 * (imi + imj));
-            k.i_eff = 1.0 / (iii + inv_inertia[j]);
             k.omega_rel = wi - w[j];
             if (delta > frac * std::min(ri, rj)) overlap = true;
             const double vn = vrel.dot(n);
@@ -560,6 +618,11 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
             PairShare& share = pair_share_[q];
             share.f = f;
             share.tj = bj.cross(-r.ft) - r.mr;
+            if (serial_sweep_) {
+                // j > i is integrated later in this sweep: it gathers its touching slots from
+                // this list, filled in increasing i, the order of its reverse index.
+                recv_slot_[rev_begin_[j] + recv_count_[j]++] = q;
+            }
             pair_delta_[q] = delta;
             pair_kl_[q] = r.k_law;
             a.f += f;
@@ -574,11 +637,12 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
     // Walls and obstacles in the enclosure frame, matched by id with the previous step's for
     // the history.
     const Eigen::Vector3d xl = rotated_ ? es.to_local(xi) : Eigen::Vector3d(xi - es.position_m);
-    if (!enclosure_.contains(xl) && loc.outside == kNoParticle) {
-        loc.outside = static_cast<int>(i);
-    }
     std::uint32_t count = 0;
-    if (!deep_inside(xl, ri)) {
+    // A sphere deep inside is inside (deep_inside is false for a non-finite xl), so the
+    // outside guard and the wall tests only run near the walls.
+    if (!deep_inside(xl)) {
+        const bool inside = has_obstacles_ ? enclosure_.contains(xl) : enclosure_.inside_walls(xl);
+        if (!inside && loc.outside == kNoParticle) loc.outside = static_cast<int>(i);
         const std::size_t base = i * wall_cap_;
         const PairCoefficients& wall_coefficients = coeff_[1];
         const PairCoefficients& rod_coefficients = coeff_[2];
@@ -604,13 +668,20 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
                 const Eigen::Vector3d bi = -(ri - 0.5 * delta) * n;
                 const Eigen::Vector3d xc = xi + bi;
                 const Eigen::Vector3d vrel = vi + wi.cross(bi) - es.velocity_at(xc);
-                k.m_eff = 1.0 / imi;
+                if (class_count_ > 0) {
+                    const MassConstants& mc = class_wall_[size_class_[i]];
+                    k.m_eff = mc.m_eff;
+                    k.m_t = mc.m_t;
+                    k.i_eff = mc.i_eff;
+                } else {
+                    k.m_eff = 1.0 / imi;
+                    k.m_t = 1.0 / (3.5 * imi);
+                    k.i_eff = 1.0 / iii;
+                }
                 k.r_eff = ri;
                 k.r_hertz = wall >= kRodBase ? hertz_r_rod_[i]
                             : wall == 0      ? hertz_r_side_[i]  // cylinder side (box: = ri)
                                              : ri;
-                k.m_t = 1.0 / (3.5 * imi);
-                k.i_eff = 1.0 / iii;
                 k.omega_rel = wi - es.angular_velocity_rad_s;
                 if (delta > frac * ri) overlap = true;
                 const double vn = vrel.dot(n);
@@ -643,14 +714,23 @@ SB_ALWAYS_INLINE void Solver::finish_particle(std::size_t i, const Accumulated& 
     // Partner shares in slot order (fixed, whatever the thread count), then semi-implicit
     // Euler (paper 000).
     Eigen::Vector3d f = a.f, t = a.t;
-    const std::uint32_t* slots = rev_slot_.data();
-    const PairFlag* active = pair_active_.data();
     const PairShare* share = pair_share_.data();
-    for (std::uint32_t q = rev_begin_[i], qe = rev_begin_[i + 1]; q < qe; ++q) {
-        const std::uint32_t slot = slots[q];
-        if (active[slot] == PairFlag::apart) continue;
-        f -= share[slot].f;
-        t += share[slot].tj;
+    if (serial_sweep_) {  // the touching slots only, listed by the partners' own_contacts
+        const std::uint32_t* slots = recv_slot_.data() + rev_begin_[i];
+        for (std::uint32_t k = 0, ke = recv_count_[i]; k < ke; ++k) {
+            f -= share[slots[k]].f;
+            t += share[slots[k]].tj;
+        }
+        recv_count_[i] = 0;
+    } else {
+        const std::uint32_t* slots = rev_slot_.data();
+        const PairFlag* active = pair_active_.data();
+        for (std::uint32_t q = rev_begin_[i], qe = rev_begin_[i + 1]; q < qe; ++q) {
+            const std::uint32_t slot = slots[q];
+            if (active[slot] == PairFlag::apart) continue;
+            f -= share[slot].f;
+            t += share[slot].tj;
+        }
     }
     Eigen::Vector3d& v = state_.v[i];
     Eigen::Vector3d& w = state_.w[i];
@@ -681,7 +761,11 @@ void Solver::sweep(const Law& law, double dt) {
     std::swap(wall_count_, prev_wall_count_);
     std::swap(wall_id_, prev_wall_id_);
     if (has_history_) std::swap(wall_hist_, prev_wall_hist_);
-    SweepLocal loc[kMaxChunks];
+    // Only the threads' own entries are reset (64 default-constructed entries cost more than
+    // the free-flight work of ten particles).
+    sweep_local_.resize(static_cast<std::size_t>(used));
+    std::fill(sweep_local_.begin(), sweep_local_.end(), SweepLocal{});
+    SweepLocal* loc = sweep_local_.data();
     if (track_energy_) {
         logs_.resize(static_cast<std::size_t>(used));
         for (int t = 0; t < used; ++t) {
@@ -690,6 +774,7 @@ void Solver::sweep(const Law& law, double dt) {
         }
     }
     Eigen::Vector3d wall_force = lock_force_, wall_moment = lock_moment_;
+    serial_sweep_ = used == 1;
     if (used == 1) {
         // One pass: the pairs of i reach only j > i and the shares i receives come from
         // i' < i, already swept, so i is integrated in place right away.

@@ -200,8 +200,9 @@ class Solver {
 
     /// Verlet list from local_x_ (the enclosure-frame positions).
     void build_neighbors();
-    /// True if the sphere (xl, r) certainly touches no wall (skips the wall tests).
-    bool deep_inside(const Eigen::Vector3d& xl, double r) const;
+    /// True if a sphere centred at xl certainly touches no wall or obstacle, whatever its
+    /// radius (skips the wall tests).
+    bool deep_inside(const Eigen::Vector3d& xl) const;
     /// One step's contacts, forces, gather and update.
     template <class Law>
     void sweep(const Law& law, double dt);
@@ -209,6 +210,9 @@ class Solver {
     Accumulated own_contacts(const Law& law, std::size_t i, double dt, SweepLocal& loc);
     void finish_particle(std::size_t i, const Accumulated& a, double dt, SweepLocal& loc);
     void account_energy(double dt);
+    /// Size classes of the particles and their mass constants (class_count_ = 0 for more
+    /// than kMaxSizeClasses distinct radii).
+    void build_size_classes();
     void snap_locked(double dt);
     int thread_count() const;
     std::size_t grain() const { return static_cast<std::size_t>(options_.parallel_grain); }
@@ -223,6 +227,15 @@ class Solver {
     ParticleState state_;
     std::vector<Eigen::Vector3d> local_x_, lock_local_;
     std::vector<double> hertz_r_side_, hertz_r_rod_;  ///< Hertz R* on cylinder side, rods [m]
+    /// Effective masses and radius of a contact, per pair of size classes or per class
+    /// against a wall (ContactKinematics' m_eff, r_eff, m_t, i_eff).
+    struct MassConstants {
+        double m_eff = 0.0, r_eff = 0.0, m_t = 0.0, i_eff = 0.0;
+    };
+    static constexpr std::size_t kMaxSizeClasses = 16;
+    std::vector<std::uint8_t> size_class_;  ///< per particle
+    std::vector<MassConstants> class_pair_, class_wall_;
+    std::size_t class_count_ = 0;
     double time_ = 0.0;
     std::int64_t step_ = 0;
     bool has_history_ = false;
@@ -255,12 +268,18 @@ class Solver {
     std::vector<PairShare> pair_share_;
     std::vector<double> pair_delta_, pair_kl_;  ///< overlap and law constant (elastic energy)
     std::vector<std::uint32_t> rev_begin_, rev_slot_;
+    /// One-thread sweep: the touching slots each particle receives, at its reverse-index
+    /// offset (recv_count_ of them), so that its gather skips the slots apart.
+    std::vector<std::uint32_t> recv_slot_, recv_count_;
+    bool serial_sweep_ = false;
 
     // wall slots: wall_cap_ per particle, current and previous step (for the history)
     std::size_t wall_cap_ = 0;
     bool has_obstacles_ = false;
-    double cylinder_radius_ = 0.0;                                            ///< 0 for a box
-    double lo_x_ = 0, lo_y_ = 0, lo_z_ = 0, hi_x_ = 0, hi_y_ = 0, hi_z_ = 0;  ///< cavity bounds
+    double cylinder_radius_ = 0.0;  ///< 0 for a box
+    /// deep_inside() bounds: centre range and squared clearance from the cylinder side
+    Eigen::Vector3d deep_lo_ = Eigen::Vector3d::Zero(), deep_hi_ = Eigen::Vector3d::Zero();
+    double deep_rho2_ = -1.0;
     bool track_energy_ = true;
     Eigen::Vector3d gravity_ = Eigen::Vector3d::Zero();
     double max_disp2_ = 0.0;  ///< at the end of the last step, since the list build
@@ -269,7 +288,8 @@ class Solver {
     std::vector<Eigen::Vector3d> wall_hist_, prev_wall_hist_;
     std::vector<double> wall_delta_, wall_kl_;
 
-    std::vector<Accumulated> own_;  ///< per particle, between the two parallel phases
+    std::vector<Accumulated> own_;         ///< per particle, between the two parallel phases
+    std::vector<SweepLocal> sweep_local_;  ///< per thread, reset at every sweep
     std::vector<Eigen::Vector3d> v_old_, w_old_;
     Eigen::Vector3d wall_force_ = Eigen::Vector3d::Zero();
     Eigen::Vector3d wall_moment_ = Eigen::Vector3d::Zero();

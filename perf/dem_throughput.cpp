@@ -9,16 +9,20 @@
 // Both enclosures move as z = A (1 - cos wt), like LAMMPS's `wiggle` and `in.damper`.
 //
 // Usage: dem_throughput a|b [--threads N] [--warmup STEPS] [--steps STEPS] [--ledger 0|1]
-//                           [--bed FILE] [--write-lammps-data FILE]
+//                           [--bed FILE] [--count N] [--write-lammps-data FILE]
+// --count (case b): N spheres, the cavity's footprint scaled by N / 5,000 (default 5,000).
 // --bed (case b): settled bed cache; read if present, else settled and written.
 // --write-lammps-data: writes the initial state as a LAMMPS `atom_style sphere` data file
 // and exits; --lammps-vars 1 prints the matching `-var` arguments of validation/lammps/
 // in.damper (a) or in.box5000 (b) and exits. Otherwise prints one line `key=value ...` with
-// particle-steps/s of the timed steps.
+// particle-steps/s of the timed steps and a hash of the final state (state_hash: equal
+// hashes mean bitwise equal runs).
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -61,9 +65,14 @@ Case case_a() {
     return c;
 }
 
-Case case_b() {
+/// count spheres: paper 002's cavity for 5,000, its footprint scaled by count / 5,000 for
+/// other counts (same depth of bed, so the same contacts per sphere: for the scaling in N).
+Case case_b(int count) {
     Case c;
-    c.options = sb::dem::perf::paper002_cavity_options(5000);
+    c.options = sb::dem::perf::paper002_cavity_options(count);
+    const double scale = std::sqrt(static_cast<double>(count) / 5000.0);
+    c.options.enclosure.length_x_m *= scale;
+    c.options.enclosure.length_y_m *= scale;
     SolverOptions& o = c.options;
     o.contact.tangential = TangentialLaw::coulomb_spring;
     o.contact.rolling = RollingLaw::none;
@@ -171,6 +180,26 @@ void write_lammps_data(const std::filesystem::path& path, const Case& c, const P
     }
 }
 
+/// FNV-1a over the bytes of the particles' positions, velocities and spins and the last wall
+/// force and moment: equal hashes mean bitwise equal runs (for A/B builds of the solver).
+std::uint64_t state_hash(const Solver& s) {
+    std::uint64_t h = 1469598103934665603ull;
+    auto mix = [&h](const Eigen::Vector3d& v) {
+        unsigned char bytes[sizeof(double) * 3];
+        std::memcpy(bytes, v.data(), sizeof bytes);
+        for (unsigned char b : bytes) h = (h ^ b) * 1099511628211ull;
+    };
+    const ParticleState& p = s.particles();
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        mix(p.x[i]);
+        mix(p.v[i]);
+        mix(p.w[i]);
+    }
+    mix(s.wall_force());
+    mix(s.wall_moment());
+    return h;
+}
+
 /// The timed steps, in a function of their own so that profilers can select them
 /// (valgrind --tool=callgrind --collect-atstart=no --toggle-collect='*timed_steps*').
 [[gnu::noinline]] double timed_steps(Solver& s, const Case& c, long& k) {
@@ -200,13 +229,18 @@ std::string lammps_vars(const Case& c) {
       << 2.0 * zeta * std::sqrt(k * 0.5 * m) << " -var etapw " << 2.0 * zeta_w * std::sqrt(k * m)
       << " -var amp " << c.level_m_s2 / (w * w) << " -var omega " << w << " -var period "
       << 1.0 / c.frequency_hz << " -var skin " << o.neighbor_skin_fraction * d;
+    if (o.enclosure.shape == EnclosureShape::box) {
+        v << " -var half_x " << 0.5 * o.enclosure.length_x_m << " -var half_y "
+          << 0.5 * o.enclosure.length_y_m << " -var height " << o.enclosure.height_m;
+    }
     return v.str();
 }
 
 [[noreturn]] void usage(const std::string& why) {
     std::cerr << "dem_throughput: " << why
               << "\nusage: dem_throughput a|b [--threads N] [--warmup STEPS] [--steps STEPS]"
-                 " [--ledger 0|1] [--bed FILE] [--write-lammps-data FILE] [--lammps-vars 1]\n";
+                 " [--ledger 0|1] [--bed FILE] [--count N (case b)] [--write-lammps-data FILE]"
+                 " [--lammps-vars 1]\n";
     std::exit(2);
 }
 
@@ -223,7 +257,15 @@ int main(int argc, char** argv) {
     if (argc < 2) usage("missing case");
     const std::string name = argv[1];
     if (name != "a" && name != "b") usage("case must be a or b, got '" + name + "'");
-    Case c = name == "a" ? case_a() : case_b();
+    int count_b = 5000;
+    for (int k = 2; k + 1 < argc; k += 2) {  // the case's size first: the others override it
+        if (std::string(argv[k]) == "--count") {
+            count_b = static_cast<int>(parse_long("--count", argv[k + 1]));
+        }
+    }
+    if (count_b < 1 || count_b > 10000000) usage("--count: expected 1 to 10000000 spheres");
+    if (name == "a" && count_b != 5000) usage("--count applies to case b only");
+    Case c = name == "a" ? case_a() : case_b(count_b);
     int threads = 1;
     bool ledger = false;
     std::string bed, lammps_data;
@@ -240,6 +282,8 @@ int main(int argc, char** argv) {
             c.steps = parse_long(key, value);
         } else if (key == "--ledger") {
             ledger = parse_long(key, value) != 0;
+        } else if (key == "--count") {
+            // read above
         } else if (key == "--bed") {
             bed = value;
         } else if (key == "--lammps-vars") {
@@ -289,11 +333,12 @@ int main(int argc, char** argv) {
         std::printf(
             "case=%s threads=%d ledger=%d particles=%.0f steps=%ld wall_s=%.4f cpu_s=%.4f "
             "us_per_step=%.4g particle_steps_per_s=%.4g particle_steps_per_cpu_s=%.4g "
-            "mean_contacts=%.1f\n",
+            "mean_contacts=%.1f state_hash=%016llx\n",
             name.c_str(), threads, ledger ? 1 : 0, n, c.steps, wall, cpu,
             1e6 * wall / static_cast<double>(c.steps), n * static_cast<double>(c.steps) / wall,
             n * static_cast<double>(c.steps) / cpu,
-            contacts / static_cast<double>(std::max(1L, c.steps)));
+            contacts / static_cast<double>(std::max(1L, c.steps)),
+            static_cast<unsigned long long>(state_hash(s)));
     } catch (const std::exception& e) {
         std::fprintf(stderr, "dem_throughput: %s\n", e.what());
         return 1;

@@ -9,7 +9,9 @@
 #
 # Usage: perf/run_dem_vs_lammps.sh [build-dir]      (default: build/perf, Release)
 # Environment: STEPS_A, WARMUP_A, STEPS_B, WARMUP_B override the step counts (defaults: those of
-# dem_throughput, 300000 + 200000 for (a), 10000 + 5000 for (b)); THREADS_B="1 2".
+# dem_throughput, 300000 + 200000 for (a), 10000 + 5000 for (b)); THREADS_B="1 2";
+# COUNTS_B="5000" (sphere counts of (b), its footprint scaled with the count: "5000 50000"
+# measures the scaling in N; SKIP_A=1 leaves (a) out).
 # Needs lmp (Debian `lammps`), mpirun (for 2 ranks) and GNU time (scripts/install-deps.sh).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -17,6 +19,7 @@ root="$(cd "$here/.." && pwd)"
 build="${1:-$root/build/perf}"
 work="${TMPDIR:-/tmp}/sb_dem_vs_lammps"
 threads_b="${THREADS_B:-1 2}"
+counts_b="${COUNTS_B:-5000}"
 command -v lmp > /dev/null || { echo "lmp not found: apt-get install -y lammps" >&2; exit 2; }
 [ -x /usr/bin/time ] || { echo "/usr/bin/time not found: scripts/install-deps.sh" >&2; exit 2; }
 mkdir -p "$work"
@@ -48,44 +51,48 @@ report() {  # label wall cpu rss
     printf '%-34s %14s %14s %8s MB\n' "$1" "$2" "$3" "$4"
 }
 
-run_case() {  # case threads
-    local c="$1" t="$2" vars n steps ours lmp_cmd
-    "$bench" "$c" --bed "$work/bed_$c.txt" --write-lammps-data "$work/$c.data"
+run_case() {  # case threads [count]
+    local c="$1" t="$2" vars n steps ours lmp_cmd size=() tag="$1"
+    if [ -n "${3:-}" ] && [ "$3" != 5000 ]; then size=(--count "$3"); tag="$1$3"; fi
+    "$bench" "$c" "${size[@]}" --bed "$work/bed_$tag.txt" --write-lammps-data "$work/$tag.data"
     # shellcheck disable=SC2046
-    vars="$("$bench" "$c" $(steps_args "$c") --lammps-vars 1)"
+    vars="$("$bench" "$c" "${size[@]}" $(steps_args "$c") --lammps-vars 1)"
     # shellcheck disable=SC2046
-    /usr/bin/time -v -o "$work/time_sb_${c}_$t.txt" "$bench" "$c" --threads "$t" \
-        --bed "$work/bed_$c.txt" $(steps_args "$c") > "$work/sb_${c}_$t.txt"
-    n="$(field particles "$work/sb_${c}_$t.txt")"
-    steps="$(field steps "$work/sb_${c}_$t.txt")"
-    ours="$(field particle_steps_per_s "$work/sb_${c}_$t.txt") $(field particle_steps_per_cpu_s "$work/sb_${c}_$t.txt")"
-    report "($c) ShakerBench, $t thread(s)" ${ours} "$(peak_rss_mb "$work/time_sb_${c}_$t.txt")"
+    /usr/bin/time -v -o "$work/time_sb_${tag}_$t.txt" "$bench" "$c" "${size[@]}" --threads "$t" \
+        --bed "$work/bed_$tag.txt" $(steps_args "$c") > "$work/sb_${tag}_$t.txt"
+    n="$(field particles "$work/sb_${tag}_$t.txt")"
+    steps="$(field steps "$work/sb_${tag}_$t.txt")"
+    ours="$(field particle_steps_per_s "$work/sb_${tag}_$t.txt") $(field particle_steps_per_cpu_s "$work/sb_${tag}_$t.txt")"
+    # shellcheck disable=SC2086
+    report "($tag) ShakerBench, $t thread(s)" ${ours} "$(peak_rss_mb "$work/time_sb_${tag}_$t.txt")"
 
     if [ "$c" = a ]; then
         lmp_cmd=(lmp -log none -in "$root/validation/lammps/in.damper" -var data "$work/a.data"
             -var out "$work/lammps_series_a.txt" -var every 1000000)
     else
-        lmp_cmd=(lmp -log none -in "$root/validation/lammps/in.box5000" -var data "$work/b.data")
+        lmp_cmd=(lmp -log none -in "$root/validation/lammps/in.box5000" -var data "$work/$tag.data")
     fi
     if [ "$t" -gt 1 ]; then
         command -v mpirun > /dev/null || { echo "mpirun not found: skipping LAMMPS x$t"; return; }
         lmp_cmd=(mpirun --allow-run-as-root --oversubscribe -np "$t" "${lmp_cmd[@]}")
     fi
     # shellcheck disable=SC2086
-    /usr/bin/time -v -o "$work/time_lmp_${c}_$t.txt" "${lmp_cmd[@]}" $vars \
-        > "$work/lmp_${c}_$t.log"
+    /usr/bin/time -v -o "$work/time_lmp_${tag}_$t.txt" "${lmp_cmd[@]}" $vars \
+        > "$work/lmp_${tag}_$t.log"
     local theirs
-    theirs="$(lammps_rates "$work/lmp_${c}_$t.log" "$n" "$steps")"
+    theirs="$(lammps_rates "$work/lmp_${tag}_$t.log" "$n" "$steps")"
     # shellcheck disable=SC2086
-    report "($c) LAMMPS, $t process(es)" $theirs "$(peak_rss_mb "$work/time_lmp_${c}_$t.txt")"
+    report "($tag) LAMMPS, $t process(es)" $theirs "$(peak_rss_mb "$work/time_lmp_${tag}_$t.txt")"
     # shellcheck disable=SC2086
     set -- $ours $theirs
-    awk -v a="$1" -v b="$2" -v c="$3" -v d="$4" -v label="($c) ratio ShakerBench / LAMMPS" \
+    awk -v a="$1" -v b="$2" -v c="$3" -v d="$4" -v label="($tag) ratio ShakerBench / LAMMPS" \
         'BEGIN {printf "%-34s %13.2fx %13.2fx\n", label, a / c, b / d}'
 }
 
 uptime
 printf '%-34s %14s %14s %10s\n' "run" "p-steps/s" "p-steps/cpu-s" "peak RSS"
-run_case a 1
-for t in $threads_b; do run_case b "$t"; done
+[ "${SKIP_A:-0}" = 1 ] || run_case a 1
+for count in $counts_b; do
+    for t in $threads_b; do run_case b "$t" "$count"; done
+done
 echo "logs and data: $work"

@@ -24,7 +24,7 @@ TEST(ResolvedConfig, WritesTheDefaultsTheConfigLeftOut) {
     const std::string resolved = resolved_config_toml(config);
     for (const char* line : {"early_periods = 3", "drift_horizon_periods = 32",
                              "point_start = \"equivalent-steady-state\"",
-                             "time_step_fraction = 0.025", "direction = \"up\"", "seed = 1",
+                             "time_step_fraction = \"automatic\"", "direction = \"up\"", "seed = 1",
                              "closest_rerun_periods = 4", "normal_stiffness = \"automatic\"",
                              "initial_amplitude = \"automatic\"", "wall_sliding_friction = 0.6"}) {
         EXPECT_NE(resolved.find(std::string("\n") + line + "\n"), std::string::npos) << line << "\n"
