@@ -100,6 +100,18 @@ void write_file(const fs::path& file, const std::string& text) {
     write_file_atomically(file, text);
 }
 
+/// True if the level's FRF has a point a log-magnitude plot can draw (a level whose points
+/// were all left out, `closest` or `uncertain`, has none; gnuplot refuses a plot with no point).
+bool has_drawable_point(const LevelIdentification& l) {
+    for (std::size_t i = 0; i < l.frf.frequency_hz.size() && i < l.frf.value.size(); ++i) {
+        const double magnitude = std::abs(l.frf.value[i]);
+        if (std::isfinite(l.frf.frequency_hz[i]) && std::isfinite(magnitude) && magnitude > 0.0) {
+            return true;
+        }
+    }
+    return false;
+}
+
 }  // namespace
 
 PlotResult write_plots(const fs::path& out_dir, const std::vector<LevelIdentification>& levels,
@@ -125,9 +137,14 @@ PlotResult write_plots(const fs::path& out_dir, const std::vector<LevelIdentific
         const std::string name = file_safe(arrangement);
         std::ostringstream frf;
         std::ostringstream curve;
-        frf << "# frequency_hz magnitude phase_deg; one block per level (and filling of the bed)\n";
-        for (std::size_t b = 0; b < items.size(); ++b) {
-            const auto* l = items[b];
+        frf << "# frequency_hz magnitude phase_deg; one block per level (and filling of the bed)"
+               " with a point\n";
+        std::vector<const LevelIdentification*> drawn;
+        for (const auto* l : items) {
+            if (has_drawable_point(*l)) drawn.push_back(l);
+        }
+        for (std::size_t b = 0; b < drawn.size(); ++b) {
+            const auto* l = drawn[b];
             if (b > 0) frf << "\n\n";
             frf << "# level " << block_title(*l, options.level_unit) << '\n';
             for (std::size_t i = 0; i < l->frf.frequency_hz.size(); ++i) {
@@ -174,25 +191,28 @@ PlotResult write_plots(const fs::path& out_dir, const std::vector<LevelIdentific
         result.data.push_back(frf_file);
         result.data.push_back(curve_file);
 
-        // FRF: magnitude (log) and phase, one curve per level.
-        const fs::path frf_svg = out_dir / (name + "-frf.svg");
-        const std::string form = form_name(items.front()->frf.form);
-        gp << "\nset output " << quoted("../" + frf_svg.filename().string()) << '\n'
-           << "set multiplot layout 2,1 title " << quoted("FRF (" + form + "), " + arrangement)
-           << "\nset ylabel " << quoted("|" + form + "|") << "\nset logscale y\nplot ";
-        for (std::size_t b = 0; b < items.size(); ++b) {
-            gp << (b ? ", " : "") << quoted(frf_file.filename().string()) << " index " << b
-               << " using 1:2 with linespoints title "
-               << quoted(block_title(*items[b], options.level_unit));
+        // FRF: magnitude (log) and phase, one curve per level with a point.
+        if (!drawn.empty()) {
+            const fs::path frf_svg = out_dir / (name + "-frf.svg");
+            const std::string form = form_name(drawn.front()->frf.form);
+            gp << "\nset output " << quoted("../" + frf_svg.filename().string()) << '\n'
+               << "set multiplot layout 2,1 title " << quoted("FRF (" + form + "), " + arrangement)
+               << "\nset ylabel " << quoted("|" + form + "|") << "\nset logscale y\nplot ";
+            for (std::size_t b = 0; b < drawn.size(); ++b) {
+                gp << (b ? ", " : "") << quoted(frf_file.filename().string()) << " index " << b
+                   << " using 1:2 with linespoints title "
+                   << quoted(block_title(*drawn[b], options.level_unit));
+            }
+            gp << "\nunset logscale y\nset ylabel 'phase [deg]'\nset xlabel 'frequency [Hz]'"
+                  "\nplot ";
+            for (std::size_t b = 0; b < drawn.size(); ++b) {
+                gp << (b ? ", " : "") << quoted(frf_file.filename().string()) << " index " << b
+                   << " using 1:3 with linespoints title "
+                   << quoted(block_title(*drawn[b], options.level_unit));
+            }
+            gp << "\nunset multiplot\nunset xlabel\n";
+            result.svg.push_back(frf_svg);
         }
-        gp << "\nunset logscale y\nset ylabel 'phase [deg]'\nset xlabel 'frequency [Hz]'\nplot ";
-        for (std::size_t b = 0; b < items.size(); ++b) {
-            gp << (b ? ", " : "") << quoted(frf_file.filename().string()) << " index " << b
-               << " using 1:3 with linespoints title "
-               << quoted(block_title(*items[b], options.level_unit));
-        }
-        gp << "\nunset multiplot\nunset xlabel\n";
-        result.svg.push_back(frf_svg);
 
         // Damping and natural frequency versus level, one curve per method with a number.
         if (!(method_has_value[0] || method_has_value[1] || method_has_value[2])) continue;

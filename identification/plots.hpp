@@ -30,15 +30,17 @@ struct PlotResult {
 
 /// For every arrangement of `levels` (in order of first appearance) writes into
 /// out_dir/plots the data files `<arrangement>-frf.dat` (frequency, |FRF|, phase in degrees;
-/// one block per level and filling of the bed) and `<arrangement>-damping.dat` (per level and
-/// method — half-power, circle fit, rational fraction — ζ [%], its seed scatter, f_n [Hz], its
-/// seed scatter: the mean and sample standard deviation over the fillings, as in damping.csv;
-/// NaN where a method gave no number), and one script `plots.gp`. The script makes
-/// out_dir/<arrangement>-frf.svg (magnitude and phase, one curve per level and filling) and
-/// out_dir/<arrangement>-damping.svg (damping ratio and natural frequency versus level, one
-/// curve per method, with the seed scatter as error bars). When gnuplot is on PATH it is run (its
-/// messages go to plots/gnuplot.log); otherwise the message says how to run it. Arrangement names
-/// are made file-safe (characters other than letters, digits, '-', '_', '.' become '_').
+/// one block per level and filling of the bed that has a point: a level whose points were all
+/// left out has no block and no curve, and an arrangement with none no FRF plot) and
+/// `<arrangement>-damping.dat` (per level and method — half-power, circle fit, rational fraction —
+/// ζ [%], its seed scatter, f_n [Hz], its seed scatter: the mean and sample standard deviation over
+/// the fillings, as in damping.csv; NaN where a method gave no number), and one script `plots.gp`.
+/// The script makes out_dir/<arrangement>-frf.svg (magnitude and phase, one curve per level and
+/// filling) and out_dir/<arrangement>-damping.svg (damping ratio and natural frequency versus
+/// level, one curve per method, with the seed scatter as error bars). When gnuplot is on PATH it is
+/// run (its messages go to plots/gnuplot.log); otherwise the message says how to run it.
+/// Arrangement names are made file-safe (characters other than letters, digits, '-', '_', '.'
+/// become '_').
 PlotResult write_plots(const std::filesystem::path& out_dir,
                        const std::vector<LevelIdentification>& levels,
                        const PlotOptions& options = {});

@@ -116,7 +116,9 @@ TEST(ProductionStep, TheAutomaticTimeStepIsTheLargestThatGivesTheConvergedRestit
             EXPECT_TRUE(coarser_fails) << "a larger step would do: " << what;
             // At e = 0.9, the restitution of paper 000's bed, the step is at least twice the
             // fixed fortieth of the contact time used before.
-            if (e == 0.9) EXPECT_GE(fraction, 1.0 / 20.0) << what;
+            if (e == 0.9) {
+                EXPECT_GE(fraction, 1.0 / 20.0) << what;
+            }
         }
     }
 }

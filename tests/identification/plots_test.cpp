@@ -129,5 +129,30 @@ TEST(Plots, GnuplotMakesSvgsWithOneCurvePerLevelAndPerMethod) {
     EXPECT_EQ(count(damping, "<title>circle-fit</title>"), 2);
 }
 
+TEST(Plots, ALevelWithoutAPointIsLeftOutOfTheFrfPlotAndAnArrangementWithoutAnyHasNone) {
+    // A predicted campaign whose points at a level were all `uncertain` identifies that
+    // level with an empty FRF; gnuplot refuses a plot with no point ("x range is invalid").
+    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
+        GTEST_SKIP() << "gnuplot is not installed";
+    }
+    auto levels = three_levels();
+    LevelIdentification empty;
+    empty.arrangement = "H-0";
+    empty.level_g = 2.0;
+    levels.push_back(empty);
+    LevelIdentification other = empty;
+    other.arrangement = "V-0";
+    levels.push_back(other);
+    const auto dir = fresh_dir("empty");
+    const auto r = write_plots(dir, levels);
+    ASSERT_TRUE(r.rendered) << r.message << "\n" << text_of(dir / "plots" / "gnuplot.log");
+    const auto frf = text_of(dir / "H-0-frf.svg");
+    EXPECT_EQ(count(frf, "<g id=\"gnuplot_plot_"), 6);  // the three levels with points
+    EXPECT_EQ(count(frf, "<title>2 g</title>"), 0);
+    EXPECT_EQ(count(text_of(dir / "plots" / "H-0-frf.dat"), "# level"), 3);
+    EXPECT_FALSE(fs::exists(dir / "V-0-frf.svg"));
+    for (const auto& svg : r.svg) EXPECT_NE(svg.filename(), "V-0-frf.svg");
+}
+
 }  // namespace
 }  // namespace sb::identification
