@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "dem/setup.hpp"
@@ -64,7 +65,9 @@ TEST(AutomaticTimeStep, ANonPositiveContactTimeOrSpeedIsRefused) {
     const Case c = hooke_case(0.9);
     EXPECT_THROW(automatic_time_step_fraction(c.options, 0.0, 1.0), std::invalid_argument);
     EXPECT_THROW(automatic_time_step_fraction(c.options, 1e-4, 0.0), std::invalid_argument);
-    EXPECT_THROW(automatic_time_step_fraction(c.options, NAN, 1.0), std::invalid_argument);
+    EXPECT_THROW(
+        automatic_time_step_fraction(c.options, std::numeric_limits<double>::quiet_NaN(), 1.0),
+        std::invalid_argument);
 }
 
 }  // namespace
