@@ -181,14 +181,16 @@ CharacterizationGrid plan_grid(const CampaignConfig& config, const CharacterizeO
                                     ? rotation_per_translation(prepared, damper->point, direction)
                                     : Eigen::Vector3d::Zero());
             for (double level : levels) {
+                // One contact per level: every filling runs the same law and step.
+                const dem::ExcitationContact contact = damper->excitation_contact(
+                    std::sqrt(2.0) * g_to_m_s2(level), prepared.first_mode_hz);
                 for (int s = 0; s < options.seeds; ++s) {
                     CharacterizationGrid::Bed bed;
                     bed.arrangement = a;
                     bed.damper = damper;
                     bed.level_g = level;
                     bed.seed = campaign.seed + static_cast<std::uint64_t>(s);
-                    bed.contact = damper->excitation_contact(std::sqrt(2.0) * g_to_m_s2(level),
-                                                             prepared.first_mode_hz);
+                    bed.contact = contact;
                     beds.push_back(std::move(bed));
                 }
             }

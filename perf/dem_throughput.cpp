@@ -19,10 +19,8 @@
 // hashes mean bitwise equal runs).
 #include <chrono>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -31,6 +29,7 @@
 #include <sstream>
 #include <string>
 
+#include "config/write.hpp"
 #include "dem/setup.hpp"
 #include "dem/solver.hpp"
 #include "dem_reference_problems.hpp"
@@ -180,24 +179,23 @@ void write_lammps_data(const std::filesystem::path& path, const Case& c, const P
     }
 }
 
-/// FNV-1a over the bytes of the particles' positions, velocities and spins and the last wall
-/// force and moment: equal hashes mean bitwise equal runs (for A/B builds of the solver).
-std::uint64_t state_hash(const Solver& s) {
-    std::uint64_t h = 1469598103934665603ull;
-    auto mix = [&h](const Eigen::Vector3d& v) {
-        unsigned char bytes[sizeof(double) * 3];
-        std::memcpy(bytes, v.data(), sizeof bytes);
-        for (unsigned char b : bytes) h = (h ^ b) * 1099511628211ull;
+/// FNV-1a (config::fnv1a_hex) over the bytes of the particles' positions, velocities and spins
+/// and the last wall force and moment: equal hashes mean bitwise equal runs (for A/B builds of
+/// the solver).
+std::string state_hash(const Solver& s) {
+    std::string bytes;
+    auto append = [&bytes](const Eigen::Vector3d& v) {
+        bytes.append(reinterpret_cast<const char*>(v.data()), 3 * sizeof(double));
     };
     const ParticleState& p = s.particles();
     for (std::size_t i = 0; i < p.size(); ++i) {
-        mix(p.x[i]);
-        mix(p.v[i]);
-        mix(p.w[i]);
+        append(p.x[i]);
+        append(p.v[i]);
+        append(p.w[i]);
     }
-    mix(s.wall_force());
-    mix(s.wall_moment());
-    return h;
+    append(s.wall_force());
+    append(s.wall_moment());
+    return sb::config::fnv1a_hex(bytes);
 }
 
 /// The timed steps, in a function of their own so that profilers can select them
@@ -333,12 +331,11 @@ int main(int argc, char** argv) {
         std::printf(
             "case=%s threads=%d ledger=%d particles=%.0f steps=%ld wall_s=%.4f cpu_s=%.4f "
             "us_per_step=%.4g particle_steps_per_s=%.4g particle_steps_per_cpu_s=%.4g "
-            "mean_contacts=%.1f state_hash=%016llx\n",
+            "mean_contacts=%.1f state_hash=%s\n",
             name.c_str(), threads, ledger ? 1 : 0, n, c.steps, wall, cpu,
             1e6 * wall / static_cast<double>(c.steps), n * static_cast<double>(c.steps) / wall,
             n * static_cast<double>(c.steps) / cpu,
-            contacts / static_cast<double>(std::max(1L, c.steps)),
-            static_cast<unsigned long long>(state_hash(s)));
+            contacts / static_cast<double>(std::max(1L, c.steps)), state_hash(s).c_str());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "dem_throughput: %s\n", e.what());
         return 1;
