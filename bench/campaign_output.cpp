@@ -133,9 +133,10 @@ void write_transients(const CampaignConfig& config, const CampaignResult& result
 
 std::string energy_csv_header(int layers) {
     std::string header =
-        "arrangement,level_g,frequency_hz,damper,wall_work_j,normal_damping_j,friction_j,"
+        "arrangement,level_g,frequency_hz,damper,filling,wall_work_j,normal_damping_j,friction_j,"
         "rolling_j,kinetic_j";
     for (int k = 0; k < layers; ++k) header += ",layer_" + std::to_string(k + 1) + "_j";
+    for (int k = 0; k < layers; ++k) header += ",layer_" + std::to_string(k + 1) + "_kinetic_j";
     return header + "\n";
 }
 

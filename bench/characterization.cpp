@@ -29,22 +29,6 @@ Eigen::Matrix3d rotation_of(const Eigen::Vector3d& theta) {
     return Eigen::AngleAxisd(angle, theta / angle).toRotationMatrix();
 }
 
-/// Kinetic energy of the particles relative to the enclosure's rigid motion [J]: the bed's
-/// agitation, without the 1/2 m v_enclosure^2 every particle riding along would carry.
-double relative_kinetic_energy(const dem::Solver& solver) {
-    const dem::ParticleState& p = solver.particles();
-    const dem::EnclosureState& e = solver.enclosure_state();
-    double energy = 0.0;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-        const Eigen::Vector3d wall =
-            e.velocity_m_s + e.angular_velocity_rad_s.cross(p.x[i] - e.position_m);
-        const Eigen::Vector3d spin = p.w[i] - e.angular_velocity_rad_s;
-        energy += 0.5 * (p.v[i] - wall).squaredNorm() / p.inv_mass[i] +
-                  0.5 * spin.squaredNorm() / p.inv_inertia[i];
-    }
-    return energy;
-}
-
 /// Kinetic energy of the particles in the laboratory frame [J].
 double laboratory_kinetic_energy(const dem::ParticleState& p) {
     double energy = 0.0;
@@ -88,6 +72,7 @@ struct EnergySamples {
         out.mechanical_change_w = interval.mechanical_change / duration;
         for (double layer : interval.layer_dissipation)
             out.layer_power_w.push_back(layer / duration);
+        out.layer_kinetic_j = interval.layer_kinetic_mean;
         const auto first = static_cast<std::size_t>(begin) * static_cast<std::size_t>(n);
         const auto last = static_cast<std::size_t>(end) * static_cast<std::size_t>(n);
         std::vector<double> kinetic(kinetic_j.begin() + static_cast<std::ptrdiff_t>(first),
@@ -243,7 +228,7 @@ ApparentMassPoint measure_apparent_mass(const EnclosureSetup& setup, const Harmo
             period.q2 += q * e2[i];
             period.q3 += q * e3[i];
             if (k % stride == 0) {
-                kinetic += relative_kinetic_energy(damper.solver());
+                kinetic += damper.solver().relative_kinetic_energy();
                 ++samples;
             }
             if (setup.bed_energy) {

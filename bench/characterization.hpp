@@ -81,6 +81,10 @@ struct BedEnergy {
     /// Per horizontal layer along gravity, bottom first (dem::HorizontalLayers; the count is
     /// the solver's energy_layers) [W].
     std::vector<double> layer_power_w;
+    /// Per horizontal layer: the mean kinetic energy, relative to the enclosure, of the
+    /// particles whose centre is in it (dem::EnergyLedger::layer_kinetic_time) [J]; they add
+    /// up to the bed's agitation (ApparentMassPoint::kinetic_j, sampled every step).
+    std::vector<double> layer_kinetic_j;
     /// Mean kinetic energy of the particles in the laboratory frame (what a DEM code that
     /// moves the walls reports, the enclosure's own motion included) [J].
     double kinetic_lab_j = 0.0;

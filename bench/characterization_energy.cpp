@@ -57,6 +57,7 @@ std::string bed_energy_csv_text(const CharacterizeResult& result) {
     out << "damper,arrangement,level_g,frequency_hz,seed,wall_power_w,normal_damping_w,"
            "friction_w,rolling_w,mechanical_change_w,kinetic_lab_j,kinetic_relative_j";
     for (std::size_t l = 0; l < layers; ++l) out << ",layer_" << l + 1 << "_w";
+    for (std::size_t l = 0; l < layers; ++l) out << ",layer_" << l + 1 << "_kinetic_j";
     out << '\n';
     for (const CharacterizedRun& run : result.runs_by_filling) {
         const BedEnergy& e = energy_of(run);
@@ -66,6 +67,10 @@ std::string bed_energy_csv_text(const CharacterizeResult& result) {
             out << ',' << exact_text(v);
         }
         for (double v : e.layer_power_w) out << ',' << exact_text(v);
+        for (std::size_t l = 0; l < layers; ++l) {
+            // empty where a run stored before this column was resumed
+            out << ',' << (l < e.layer_kinetic_j.size() ? exact_text(e.layer_kinetic_j[l]) : "");
+        }
         out << '\n';
     }
     return out.str();

@@ -281,6 +281,7 @@ std::string point_text(const ApparentMassPoint& m) {
         write_list(out, e.layer_power_w);
         write_list(out, e.kinetic_amplitude_j);
         write_list(out, e.dissipation_amplitude_w);
+        write_list(out, e.layer_kinetic_j);
     }
     return out.str();
 }
@@ -314,6 +315,8 @@ ApparentMassPoint parse_point(const std::string& text) {
         energy.layer_power_w = read_list(in);
         energy.kinetic_amplitude_j = read_list(in);
         energy.dissipation_amplitude_w = read_list(in);
+        // Results stored before the layers' agitation was measured end here.
+        if (in >> std::ws; !in.eof()) energy.layer_kinetic_j = read_list(in);
         if (tag != "energy" || in.fail()) {
             throw std::runtime_error("a characterisation run's energy did not read: " + text);
         }

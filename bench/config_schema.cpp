@@ -403,9 +403,10 @@ std::shared_ptr<const config::Table> output_table() {
         "SVG plots through gnuplot, when it is installed");
     t.boolean(
         "energy", [](OutputSpec & o) -> auto& { return o.energy; },
-        "energy.csv: per point and DEM damper, the energy per period over the steady "
+        "energy.csv: per point, DEM damper and filling, the energy per period over the steady "
         "window: wall work, dissipation by normal damping, friction and rolling, kinetic "
-        "energy, and dissipation per horizontal layer; for characterize, as --energy");
+        "energy, dissipation per horizontal layer and each layer's agitation (its particles' "
+        "mean kinetic energy relative to the enclosure); for characterize, as --energy");
     t.integer(
          "energy_layers", [](OutputSpec & o) -> auto& { return o.energy_layers; },
          "horizontal layers (along gravity) of energy.csv and of characterize --energy")

@@ -6,35 +6,34 @@
 #include <stdexcept>
 
 #include "core/units.hpp"
+#include "dem/energy_periods.hpp"
 #include "identification/harmonics.hpp"
 
 namespace sb::bench {
 
 namespace {
 
-/// The energies a damper's ledger holds now (cumulative works, current kinetic energy).
-PeriodEnergy ledger_now(const dem::Solver& solver) {
-    const dem::EnergyLedger l = solver.energy();
-    PeriodEnergy e;
-    e.wall_work_j = l.wall_work;
-    e.normal_damping_j = l.normal_damping;
-    e.friction_j = l.friction;
-    e.rolling_j = l.rolling;
-    e.kinetic_j = l.kinetic_translational + l.kinetic_rotational;
-    e.layer_dissipation_j = l.layer_dissipation;
-    return e;
-}
+/// A damper's ledger now and the damper's clock.
+struct LedgerSnapshot {
+    dem::EnergyLedger ledger;
+    double time_s = 0.0;
+};
 
-/// One period's energies: the cumulative works' differences, the kinetic energy at its end.
-PeriodEnergy over_period(const PeriodEnergy& begin, const PeriodEnergy& end) {
-    PeriodEnergy e = end;
-    e.wall_work_j -= begin.wall_work_j;
-    e.normal_damping_j -= begin.normal_damping_j;
-    e.friction_j -= begin.friction_j;
-    e.rolling_j -= begin.rolling_j;
-    for (std::size_t k = 0; k < e.layer_dissipation_j.size(); ++k) {
-        e.layer_dissipation_j[k] -= begin.layer_dissipation_j[k];
-    }
+LedgerSnapshot ledger_now(const dem::Solver& solver) { return {solver.energy(), solver.time()}; }
+
+/// One period's energies: the cumulative works' differences, the kinetic energy at its end,
+/// the layers' agitation averaged over it.
+PeriodEnergy over_period(const LedgerSnapshot& begin, const LedgerSnapshot& end) {
+    const dem::EnergyInterval interval =
+        dem::energy_between(begin.ledger, end.ledger, end.time_s - begin.time_s);
+    PeriodEnergy e;
+    e.wall_work_j = interval.wall_work;
+    e.normal_damping_j = interval.normal_damping;
+    e.friction_j = interval.friction;
+    e.rolling_j = interval.rolling;
+    e.kinetic_j = end.ledger.kinetic_translational + end.ledger.kinetic_rotational;
+    e.layer_dissipation_j = interval.layer_dissipation;
+    e.layer_kinetic_j = interval.layer_kinetic_mean;
     return e;
 }
 
@@ -68,7 +67,7 @@ control::PeriodResult SpecimenPlant::run_period(double amplitude, double frequen
     period_sum_q_.setZero(specimen_->modal_displacement().size());
     // The ledgers at the period's start (after any scaling, which restarts them).
     const auto& attachments = specimen_->attachments();
-    std::vector<std::optional<PeriodEnergy>> energy_begin(attachments.size());
+    std::vector<std::optional<LedgerSnapshot>> energy_begin(attachments.size());
     if (track_energy_) {
         for (std::size_t a = 0; a < attachments.size(); ++a) {
             if (const dem::Solver* solver = dem_solver(attachments[a])) {
@@ -222,6 +221,7 @@ std::vector<std::optional<PeriodEnergy>> SpecimenPlant::window_energy(int begin,
             if (!out[a]) {
                 out[a] = PeriodEnergy{};
                 out[a]->layer_dissipation_j.assign(e[a]->layer_dissipation_j.size(), 0.0);
+                out[a]->layer_kinetic_j.assign(e[a]->layer_kinetic_j.size(), 0.0);
             }
             PeriodEnergy& m = *out[a];
             m.wall_work_j += e[a]->wall_work_j / count;
@@ -231,6 +231,9 @@ std::vector<std::optional<PeriodEnergy>> SpecimenPlant::window_energy(int begin,
             m.kinetic_j += e[a]->kinetic_j / count;
             for (std::size_t k = 0; k < m.layer_dissipation_j.size(); ++k) {
                 m.layer_dissipation_j[k] += e[a]->layer_dissipation_j[k] / count;
+            }
+            for (std::size_t k = 0; k < m.layer_kinetic_j.size(); ++k) {
+                m.layer_kinetic_j[k] += e[a]->layer_kinetic_j[k] / count;
             }
         }
     }

@@ -20,6 +20,9 @@ struct PeriodEnergy {
     double rolling_j = 0.0;         ///< dissipated by rolling resistance
     double kinetic_j = 0.0;         ///< kinetic energy of the particles at the period's end
     std::vector<double> layer_dissipation_j;  ///< per horizontal layer, bottom first
+    /// Per horizontal layer: the mean kinetic energy, relative to the enclosure, of the
+    /// particles whose centre is in it [J] (dem::EnergyLedger::layer_kinetic_time).
+    std::vector<double> layer_kinetic_j;
 };
 
 /// What one period gave on every channel.

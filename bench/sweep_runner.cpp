@@ -104,12 +104,14 @@ std::vector<std::string> energy_lines(const SweepTask& task, double frequency_hz
         if (!energy[d]) continue;
         const PeriodEnergy& e = *energy[d];
         std::string line = task.prepared->arrangement.name + "," + number_text(task.level_g) + "," +
-                           number_text(frequency_hz) + "," + damper_names[d];
+                           number_text(frequency_hz) + "," + damper_names[d] + "," +
+                           std::to_string(task.filling);
         for (double v :
              {e.wall_work_j, e.normal_damping_j, e.friction_j, e.rolling_j, e.kinetic_j}) {
             line += "," + number_text(v);
         }
         for (double v : e.layer_dissipation_j) line += "," + number_text(v);
+        for (double v : e.layer_kinetic_j) line += "," + number_text(v);
         lines.push_back(std::move(line));
     }
     return lines;

@@ -18,6 +18,12 @@ EnergyInterval energy_between(const EnergyLedger& a, const EnergyLedger& b, doub
          ++k) {
         out.layer_dissipation[k] -= a.layer_dissipation[k];
     }
+    out.layer_kinetic_mean = b.layer_kinetic_time;
+    for (std::size_t k = 0; k < out.layer_kinetic_mean.size(); ++k) {
+        const double before = k < a.layer_kinetic_time.size() ? a.layer_kinetic_time[k] : 0.0;
+        out.layer_kinetic_mean[k] =
+            duration_s > 0.0 ? (out.layer_kinetic_mean[k] - before) / duration_s : 0.0;
+    }
     return out;
 }
 

@@ -16,6 +16,9 @@ struct EnergyInterval {
     double rolling = 0.0;                     ///< dissipated by rolling resistance
     double mechanical_change = 0.0;           ///< change of kinetic + potential + elastic energy
     std::vector<double> layer_dissipation{};  ///< per layer (solver's energy_layers)
+    /// Per layer: the mean over the interval of the kinetic energy relative to the enclosure
+    /// of the particles whose centre is in it (EnergyLedger::layer_kinetic_time) [J].
+    std::vector<double> layer_kinetic_mean{};
 
     double dissipated() const { return normal_damping + friction + rolling; }
     /// Time-averaged dissipated power [W].

@@ -933,6 +933,28 @@ void Solver::account_energy(double dt) {
             }
         }
     }
+    // The layers' agitation: each particle's kinetic energy relative to the walls after the
+    // step, in the layer of its centre, in particle order (the same for any thread count).
+    if (layered) {
+        for (std::size_t i = 0; i < state_.size(); ++i) {
+            const int l = layers_.index(es.to_local(state_.x[i]));
+            ledger_.layer_kinetic_time[static_cast<std::size_t>(l)] +=
+                relative_kinetic_energy(i) * dt;
+        }
+    }
+}
+
+double Solver::relative_kinetic_energy(std::size_t i) const {
+    const EnclosureState& e = enclosure_state_;
+    const Eigen::Vector3d spin = state_.w[i] - e.angular_velocity_rad_s;
+    return 0.5 * (state_.v[i] - e.velocity_at(state_.x[i])).squaredNorm() / state_.inv_mass[i] +
+           0.5 * spin.squaredNorm() / state_.inv_inertia[i];
+}
+
+double Solver::relative_kinetic_energy() const {
+    double energy = 0.0;
+    for (std::size_t i = 0; i < state_.size(); ++i) energy += relative_kinetic_energy(i);
+    return energy;
 }
 
 EnergyLedger Solver::energy() const {
@@ -968,6 +990,7 @@ EnergyLedger Solver::energy() const {
 void Solver::reset_energy() {
     ledger_ = EnergyLedger{};
     ledger_.layer_dissipation.assign(static_cast<std::size_t>(options_.energy_layers), 0.0);
+    ledger_.layer_kinetic_time.assign(static_cast<std::size_t>(options_.energy_layers), 0.0);
     ledger_.initial_total = energy().mechanical();
 }
 

@@ -67,6 +67,12 @@ struct EnergyLedger {
     /// Per horizontal layer, bottom first: slabs normal to gravity at the initial pose
     /// (Solver::layers(), paper 002 Fig. 13).
     std::vector<double> layer_dissipation{};
+    /// Per horizontal layer (the one holding the sphere's centre): the time integral of the
+    /// kinetic energy of the particles' motion relative to the enclosure, translation and
+    /// spin, sampled after every step [J s]. Its change over an interval divided by the
+    /// interval's length is the layer's mean agitation: zero for a bed riding its enclosure
+    /// rigidly, whatever the enclosure does (paper 000, section 4: which layers move).
+    std::vector<double> layer_kinetic_time{};
 
     double mechanical() const {
         return kinetic_translational + kinetic_rotational + potential + elastic;
@@ -113,6 +119,10 @@ class Solver {
     double dissipated_j() const { return ledger_.dissipated(); }
     /// Restarts the cumulative works and the reference energy.
     void reset_energy();
+    /// Kinetic energy of the particles relative to the enclosure's rigid motion, translation
+    /// and spin [J]: the bed's agitation, without the 1/2 m v_wall^2 every particle riding
+    /// along would carry. O(particles).
+    double relative_kinetic_energy() const;
 
     const ParticleState& particles() const { return state_; }
     /// Positions and velocities in the enclosure frame (for saving a settled state).
@@ -210,6 +220,8 @@ class Solver {
     Accumulated own_contacts(const Law& law, std::size_t i, double dt, SweepLocal& loc);
     void finish_particle(std::size_t i, const Accumulated& a, double dt, SweepLocal& loc);
     void account_energy(double dt);
+    /// Particle i's kinetic energy relative to the enclosure (relative_kinetic_energy()).
+    double relative_kinetic_energy(std::size_t i) const;
     /// Size classes of the particles and their mass constants (class_count_ = 0 for more
     /// than kMaxSizeClasses distinct radii).
     void build_size_classes();

@@ -30,23 +30,38 @@ out=$3
 seeds=${4:-5}
 shift $(($# < 4 ? $# : 4))
 
-# name | --set assignments (space separated). The stiffness of the Hooke law varies as the
-# inverse square of the allowed overlap: max_overlap_fraction 0.02 (the paper-000 configs)
-# gives x1, 0.0283 x0.5, 0.0141 x2, 0.01 x4.
+# The config's own values (with SETS) that the variants scale: the Hooke law's stiffness
+# varies as the inverse square of the allowed overlap, so stiffness x s is the overlap
+# fraction / sqrt(s); the tighter tolerance's 8-period windows get four times the budget.
 damper=${DAMPER:-pd}
+key_args=(keys "$config")
+for s in ${SETS:-}; do key_args+=(--set "$s"); done
+value_of() {  # the value of a dotted key as `shakerbench keys` prints it
+    "$shakerbench" "${key_args[@]}" | awk -v key="$1" '$1 == key && !found { print $3; found = 1 }'
+}
+overlap=$(value_of "dampers.$damper.contact.max_overlap_fraction")
+budget=$(value_of controller.max_periods)
+if [[ -z $overlap || -z $budget ]]; then
+    echo "$0: $config has no dampers.$damper.contact.max_overlap_fraction or controller.max_periods (DAMPER=NAME names the damper)" >&2
+    exit 2
+fi
+overlap_for() { awk -v o="$overlap" -v s="$1" 'BEGIN { printf "%.6g", o / sqrt(s) }'; }
+
+# name | --set assignments (space separated). The baseline's time step is the config's, by
+# default the automatic one (docs/dem.md: t_c/20 for a Hooke contact of restitution 0.9).
 variants=(
     "baseline|"
     "dt_tc/10|dampers.$damper.contact.time_step_fraction=0.1"
-    "stiffness_x0.5|dampers.$damper.contact.max_overlap_fraction=0.0283"
-    "stiffness_x2|dampers.$damper.contact.max_overlap_fraction=0.0141"
-    "stiffness_x4|dampers.$damper.contact.max_overlap_fraction=0.01"
+    "stiffness_x0.5|dampers.$damper.contact.max_overlap_fraction=$(overlap_for 0.5)"
+    "stiffness_x2|dampers.$damper.contact.max_overlap_fraction=$(overlap_for 2)"
+    "stiffness_x4|dampers.$damper.contact.max_overlap_fraction=$(overlap_for 4)"
     "stiffness_per_level|dampers.$damper.contact.stiffness_for=level"
-    "dt_tc/20|dampers.$damper.contact.time_step_fraction=0.05"
+    "dt_tc/40|dampers.$damper.contact.time_step_fraction=0.025"
     "dt_tc/80|dampers.$damper.contact.time_step_fraction=0.0125"
     "modes_3|structure.modes=3"
     "modes_12|structure.modes=12"
     "grid_11|campaign.frequencies.count=11"
-    "tolerance_0.02|controller.tolerance=0.02 controller.window_periods=8"
+    "tolerance_0.02|controller.tolerance=0.02 controller.window_periods=8 controller.max_periods=$((4 * budget))"
 )
 
 # The variants named on the command line, in their order; all of them otherwise.

@@ -266,9 +266,10 @@ TEST(CampaignFunction, EnergyPerPointBalancesAndItsLayersAddUp) {
         std::stringstream in(line);
         std::string cell;
         for (int i = 0; std::getline(in, cell, ','); ++i) {
-            if (i >= 4) cells.push_back(std::stod(cell));
+            if (i == 4) EXPECT_EQ(cell, "0") << line;  // the filling
+            if (i >= 5) cells.push_back(std::stod(cell));
         }
-        ASSERT_EQ(cells.size(), 5u + 4u) << line;
+        ASSERT_EQ(cells.size(), 5u + 4u + 4u) << line;
         const double work = cells[0];
         const double dissipated = cells[1] + cells[2] + cells[3];
         // Over whole steady periods the bed's energy returns: what the walls put in is
@@ -278,6 +279,13 @@ TEST(CampaignFunction, EnergyPerPointBalancesAndItsLayersAddUp) {
         const double layers = cells[5] + cells[6] + cells[7] + cells[8];
         // The rows hold 9 significant digits.
         EXPECT_NEAR(layers, dissipated, 1e-8 * dissipated) << line;
+        // The layers' agitation: the bed at 2 g moves relative to its enclosure.
+        double agitation = 0.0;
+        for (int l = 9; l < 13; ++l) {
+            EXPECT_GE(cells[static_cast<std::size_t>(l)], 0.0) << line;
+            agitation += cells[static_cast<std::size_t>(l)];
+        }
+        EXPECT_GT(agitation, 0.0) << line;
     }
     // The bed at the point of largest response, as a ParaView file.
     const auto files = store.files();

@@ -147,13 +147,24 @@ TEST(CharacterizationEnergy, ALooseBedsLayersAddUpToItsMechanismsAndItsFilesHold
         // A bed at 1.5 g riding on its floor: the bottom layer dissipates, the top one
         // (above the bed's 6 mm) hardly.
         EXPECT_GT(e.layer_power_w.front(), 10.0 * e.layer_power_w.back());
+        // The layers' agitation, averaged over every step of the windows, adds up to the
+        // bed's, sampled 64 times a period: the same mean up to the sampling (0.5-0.6 % here).
+        ASSERT_EQ(e.layer_kinetic_j.size(), 5U);
+        double agitation = 0.0;
+        for (double k : e.layer_kinetic_j) {
+            EXPECT_GE(k, 0.0);
+            agitation += k;
+        }
+        EXPECT_GT(run.result.kinetic_j, 0.0);
+        EXPECT_NEAR(agitation, run.result.kinetic_j, 0.02 * run.result.kinetic_j);
     }
     const std::string energy = bed_energy_csv_text(result);
     EXPECT_NE(
         energy.find(
             "seed,wall_power_w,normal_damping_w,friction_w,rolling_w,"
             "mechanical_change_w,kinetic_lab_j,kinetic_relative_j,layer_1_w,layer_2_w,layer_3_w,"
-            "layer_4_w,layer_5_w\n"),
+            "layer_4_w,layer_5_w,layer_1_kinetic_j,layer_2_kinetic_j,layer_3_kinetic_j,"
+            "layer_4_kinetic_j,layer_5_kinetic_j\n"),
         std::string::npos)
         << energy;
     std::istringstream lines(energy);
