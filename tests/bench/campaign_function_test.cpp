@@ -266,7 +266,9 @@ TEST(CampaignFunction, EnergyPerPointBalancesAndItsLayersAddUp) {
         std::stringstream in(line);
         std::string cell;
         for (int i = 0; std::getline(in, cell, ','); ++i) {
-            if (i == 4) EXPECT_EQ(cell, "0") << line;  // the filling
+            if (i == 4) {
+                EXPECT_EQ(cell, "0") << line;  // the filling
+            }
             if (i >= 5) cells.push_back(std::stod(cell));
         }
         ASSERT_EQ(cells.size(), 5u + 4u + 4u) << line;
