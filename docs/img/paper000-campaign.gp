@@ -19,6 +19,6 @@ do for [side in "H V"] {
     plot for [k = 1:3] rows(side . "-" . word("0 45 90", k), "circle-fit") u 2:(100 * $4) \
              w lp lw 2 pt 7 lc rgb word(colours, k) t side . "-" . word("0 45 90", k) . " circle fit", \
          for [k = 1:3] rows(side . "-" . word("0 45 90", k), "half-power") u 2:(100 * $4) \
-             w p pt 6 ps 1.2 lc rgb word(colours, k) t "half-power"
+             w p pt 6 ps 1.2 lc rgb word(colours, k) t (k == 1 ? "half-power (open)" : "")
 }
 unset multiplot

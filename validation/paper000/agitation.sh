@@ -14,6 +14,8 @@ fi
 out=$1
 channel=${2:-acc_damper}
 awk -F, -v channel="$channel" '
+    # points.csv has a filling column only with several fillings per sweep
+    function filling(f) { return (f, "filling") in col ? $col[f, "filling"] : 0 }
     FNR == 1 {
         file++
         for (c = 1; c <= NF; ++c) col[file, $c] = c
@@ -36,12 +38,12 @@ awk -F, -v channel="$channel" '
         f2 = fr * fr + fi * fi
         if (f2 == 0) next
         h = sqrt((ar * ar + ai * ai) / f2)
-        key = $1 SUBSEP $2 SUBSEP $col[1, "filling"]
+        key = $1 SUBSEP $2 SUBSEP filling(1)
         if (!(key in best) || h > best[key]) { best[key] = h; at[key] = $3 }
         next
     }
     {
-        key = $1 SUBSEP $2 SUBSEP $col[2, "filling"]
+        key = $1 SUBSEP $2 SUBSEP filling(2)
         if (!(key in at) || ($3 - at[key]) ^ 2 > (1e-6 * at[key]) ^ 2) next
         total = upper = 0
         text = ""
@@ -51,7 +53,7 @@ awk -F, -v channel="$channel" '
             if (l > layers / 2) upper += e
             text = text sprintf("%s%.3g", l > 1 ? ", " : "", e)
         }
-        printf "| %s | %s g | %s | %.3f Hz | %.3g | %s | %.0f %% |\n", $1, $2, $col[2, "filling"], $3,
+        printf "| %s | %s g | %s | %.3f Hz | %.3g | %s | %.0f %% |\n", $1, $2, filling(2), $3,
                best[key], text, (total > 0 ? 100 * upper / total : 0)
     }' "$out/points.csv" "$out/energy.csv" |
     sort -t'|' -k2,2 -k3,3n -k4,4n |
