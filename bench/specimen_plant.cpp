@@ -37,6 +37,12 @@ PeriodEnergy over_period(const LedgerSnapshot& begin, const LedgerSnapshot& end)
     return e;
 }
 
+/// sum += values / count, element by element (sum sized to values the first time).
+void add_mean_share(std::vector<double>& sum, const std::vector<double>& values, double count) {
+    sum.resize(values.size(), 0.0);
+    for (std::size_t k = 0; k < values.size(); ++k) sum[k] += values[k] / count;
+}
+
 }  // namespace
 
 SpecimenPlant::SpecimenPlant(CoupledSpecimen& specimen, int series_samples_per_period,
@@ -218,23 +224,15 @@ std::vector<std::optional<PeriodEnergy>> SpecimenPlant::window_energy(int begin,
         for (int p = begin; p < end; ++p) {
             const auto& e = periods_[static_cast<std::size_t>(p)].energy;
             if (a >= e.size() || !e[a]) continue;
-            if (!out[a]) {
-                out[a] = PeriodEnergy{};
-                out[a]->layer_dissipation_j.assign(e[a]->layer_dissipation_j.size(), 0.0);
-                out[a]->layer_kinetic_j.assign(e[a]->layer_kinetic_j.size(), 0.0);
-            }
+            if (!out[a]) out[a] = PeriodEnergy{};
             PeriodEnergy& m = *out[a];
             m.wall_work_j += e[a]->wall_work_j / count;
             m.normal_damping_j += e[a]->normal_damping_j / count;
             m.friction_j += e[a]->friction_j / count;
             m.rolling_j += e[a]->rolling_j / count;
             m.kinetic_j += e[a]->kinetic_j / count;
-            for (std::size_t k = 0; k < m.layer_dissipation_j.size(); ++k) {
-                m.layer_dissipation_j[k] += e[a]->layer_dissipation_j[k] / count;
-            }
-            for (std::size_t k = 0; k < m.layer_kinetic_j.size(); ++k) {
-                m.layer_kinetic_j[k] += e[a]->layer_kinetic_j[k] / count;
-            }
+            add_mean_share(m.layer_dissipation_j, e[a]->layer_dissipation_j, count);
+            add_mean_share(m.layer_kinetic_j, e[a]->layer_kinetic_j, count);
         }
     }
     return out;
