@@ -4,6 +4,7 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <sstream>
 
 #include "bench/campaign_output.hpp"
 #include "bench/prediction.hpp"
@@ -19,6 +20,7 @@ struct PredictArgs {
     std::string config;
     std::string out_dir;
     std::string characterization;
+    double scale = 1.0;
     bool quiet = false;
     std::vector<std::string> overrides;
     std::string command_line;
@@ -29,7 +31,7 @@ int run(const PredictArgs& args) {
     auto config = load_config_or_report(args.config, args.overrides, exit_code);
     if (!config) return exit_code;
     if (!args.characterization.empty()) {
-        *config = bench::with_describing_functions(*config, args.characterization);
+        *config = bench::with_describing_functions(*config, args.characterization, args.scale);
     }
     const std::filesystem::path out_dir =
         args.out_dir.empty() ? std::filesystem::path("out") / (config->name + "-predicted")
@@ -86,8 +88,15 @@ void register_predict_command(CLI::App& app, int& exit_code) {
     cmd->add_option("config", args->config, "campaign config (TOML)");
     cmd->add_option("-o,--out", args->out_dir,
                     "recording directory (default: out/<campaign name>-predicted)");
-    cmd->add_option("--characterization", args->characterization,
-                    "characterization.csv for every damper whose model is dem");
+    CLI::Option* characterization =
+        cmd->add_option("--characterization", args->characterization,
+                        "characterization.csv for every damper whose model is dem");
+    cmd->add_option("--scale", args->scale,
+                    "with --characterization: how many times the characterised bed each damper "
+                    "holds (dampers.NAME.characterization_scale; a quarter of the footprint "
+                    "characterised: 4)")
+        ->check(CLI::PositiveNumber)
+        ->needs(characterization);
     cmd->add_flag("-q,--quiet", args->quiet, "no progress lines");
     add_set_option(*cmd, args->overrides);
     cmd->callback([args, &exit_code] {
@@ -96,6 +105,11 @@ void register_predict_command(CLI::App& app, int& exit_code) {
         if (!args->out_dir.empty()) args->command_line += " --out " + args->out_dir;
         if (!args->characterization.empty()) {
             args->command_line += " --characterization " + args->characterization;
+        }
+        if (args->scale != 1.0) {
+            std::ostringstream scale;
+            scale << std::setprecision(17) << args->scale;
+            args->command_line += " --scale " + scale.str();
         }
         args->command_line += overrides_text(args->overrides);
         exit_code = run(*args);

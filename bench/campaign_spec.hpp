@@ -155,6 +155,10 @@ struct DamperSpec {
     Model model = Model::dem;
     /// characterization.csv of `shakerbench characterize` (model = describing_function).
     std::filesystem::path characterization_file;
+    /// How many times the characterised bed this damper holds: the describing function's
+    /// apparent mass (and bed mass) multiplied by it, a representative part of a bed (a
+    /// quarter of its footprint, a column of a grid's cells) characterised for the whole.
+    double characterization_scale = 1.0;
     int threads = 1;                      ///< OpenMP threads of this damper's DEM
     double guard_overlap_fraction = 0.5;  ///< overlap / radius beyond which the run stops [-]
     dem::EnclosureOptions enclosure{};

@@ -516,6 +516,18 @@ std::shared_ptr<const config::Table> damper_table() {
             "`characterization.csv` written by `shakerbench characterize` for this damper "
             "(same name) and the arrangements run, relative to the config's folder; required "
             "with model = \"describing-function\"");
+    t.number(
+         "characterization_scale", [](DamperSpec & d) -> auto& { return d.characterization_scale; },
+         "how many times the characterised bed this damper holds (its apparent mass and bed "
+         "mass multiplied by it)")
+        .unit("-")
+        .bound(Bound::positive())
+        .when(describing, "only with model = \"describing-function\"", true)
+        .doc(
+            "the characterised apparent mass and bed mass multiplied by this factor: a part of "
+            "a large bed characterised for the whole (a quarter of the footprint at the full "
+            "height: 4), where the walls' share of the part is small enough "
+            "(docs/characterisation.md); `predict --scale` sets it with `--characterization`");
     t.integer(
          "threads", [](DamperSpec & d) -> auto& { return d.threads; },
          "OpenMP threads of this damper's DEM (sweeps already run in parallel; 0: OpenMP's "

@@ -82,6 +82,21 @@ std::size_t lower_index(const std::vector<double>& grid, double at) {
     return std::min(k, grid.size() - 2);
 }
 
+/// A row standing for `scale` copies of the bed characterised: every extensive quantity
+/// (mass, force per acceleration, power, energy) multiplied, the ratios kept. The standard
+/// deviations too: the copies are taken as moving alike, not as independent fillings.
+CharacterizationRow scaled(CharacterizationRow r, double scale) {
+    r.bed_mass_kg *= scale;
+    r.apparent_mass_kg *= scale;
+    r.apparent_mass_re_std_kg *= scale;
+    r.apparent_mass_im_std_kg *= scale;
+    r.power_w *= scale;
+    r.power_std_w *= scale;
+    r.kinetic_j *= scale;
+    r.kinetic_std_j *= scale;
+    return r;
+}
+
 }  // namespace
 
 double monotone_cubic(const std::vector<double>& x, const std::vector<double>& y, double at) {
@@ -299,7 +314,10 @@ std::string damper_hash(const CampaignConfig& config, const std::string& damper)
         if (line.rfind(prefix, 0) != 0) continue;
         const std::string key = line.substr(prefix.size(), line.find(" = ") - prefix.size());
         // Not the physics: how the damper is represented and on how many threads.
-        if (key == "model" || key == "characterization_file" || key == "threads") continue;
+        if (key == "model" || key == "characterization_file" || key == "characterization_scale" ||
+            key == "threads") {
+            continue;
+        }
         kept += line.substr(prefix.size()) + "\n";
     }
     return config::fnv1a_hex(kept);
@@ -407,10 +425,13 @@ DescribingFunction::Value DescribingFunction::evaluate(double acceleration_m_s2,
 
 DescribingFunction describing_function_for(const CharacterizationTable& table,
                                            const std::string& file, const std::string& damper,
-                                           const std::string& arrangement) {
+                                           const std::string& arrangement, double scale) {
+    if (!(scale > 0.0 && std::isfinite(scale))) {
+        throw std::invalid_argument("describing_function_for: the scale must be positive");
+    }
     std::vector<CharacterizationRow> rows;
     for (const auto& r : table.rows) {
-        if (r.damper == damper && r.arrangement == arrangement) rows.push_back(r);
+        if (r.damper == damper && r.arrangement == arrangement) rows.push_back(scaled(r, scale));
     }
     if (rows.empty()) {
         std::set<std::string> have;

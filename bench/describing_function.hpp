@@ -111,11 +111,13 @@ class DescribingFunction {
     Eigen::Vector3d rotation_per_translation_ = Eigen::Vector3d::Zero();
 };
 
-/// The describing function of `damper` in `arrangement` from the table read from `file`;
-/// throws identification::FileError naming the file when it holds no rows for them.
+/// The describing function of `damper` in `arrangement` from the table read from `file`,
+/// standing for `scale` times the bed characterised (its masses, powers and energies
+/// multiplied: dampers.NAME.characterization_scale); throws identification::FileError naming
+/// the file when it holds no rows for them.
 DescribingFunction describing_function_for(const CharacterizationTable& table,
                                            const std::string& file, const std::string& damper,
-                                           const std::string& arrangement);
+                                           const std::string& arrangement, double scale = 1.0);
 
 /// Monotone cubic Hermite interpolation of y(x) at `at` (x ascending, at least one point;
 /// held at the ends outside). Exposed for its tests.

@@ -8,6 +8,7 @@
 #include <complex>
 #include <cstdio>
 #include <functional>
+#include <iomanip>
 #include <map>
 #include <memory>
 #include <optional>
@@ -15,6 +16,7 @@
 #include <stdexcept>
 
 #include "bench/arrangement.hpp"
+#include "bench/campaign_plan.hpp"
 #include "bench/physics_attachments.hpp"
 #include "bench/resolved_config.hpp"
 #include "bench/shaker.hpp"
@@ -69,14 +71,40 @@ std::shared_ptr<const DescribingFunction> function_of(const CampaignConfig& conf
                                                       const CharacterizationTable& table) {
     const std::string file = damper.characterization_file.string();
     try {
-        return std::make_shared<const DescribingFunction>(
-            describing_function_for(table, file, damper.name, arrangement));
+        return std::make_shared<const DescribingFunction>(describing_function_for(
+            table, file, damper.name, arrangement, damper.characterization_scale));
     } catch (const id::FileError& e) {
         throw config::ConfigException(
             {problem(config, file_key(damper), config::quoted(file),
                      std::string("has no describing function to use: ") + e.what(),
                      "characterization.csv of this damper")});
     }
+}
+
+/// A warning when the characterised bed, times the damper's characterization_scale, is not
+/// the damper's own bed (within 2 %: the size distribution's draw): a describing function
+/// of a part of the bed used for the whole without the scale, or with the wrong one.
+std::optional<std::string> bed_mass_mismatch(const DamperSpec& damper,
+                                             const CharacterizationTable& table,
+                                             std::uint64_t seed) {
+    double characterised = 0.0;
+    int rows = 0;
+    for (const auto& r : table.rows) {
+        if (r.damper != damper.name) continue;
+        characterised += r.bed_mass_kg;
+        ++rows;
+    }
+    if (rows == 0) return std::nullopt;
+    characterised /= rows;
+    const double own = particle_mass_kg(damper, seed);
+    const double stands_for = damper.characterization_scale * characterised;
+    if (!(own > 0.0) || std::abs(stands_for - own) <= 0.02 * own) return std::nullopt;
+    std::ostringstream line;
+    line << std::setprecision(4) << "warning: damper " << damper.name << ": the bed characterised ("
+         << characterised * 1e3 << " g) times characterization_scale "
+         << damper.characterization_scale << " is " << stands_for * 1e3 << " g, this damper's bed "
+         << own * 1e3 << " g (a scale of " << own / characterised << " would make them equal)";
+    return line.str();
 }
 
 /// The bed's weight as a load on the point: its mass at the centre of a bed at the
@@ -341,13 +369,14 @@ Attachment describing_function_attachment(const CampaignConfig& config, const Da
 }
 
 CampaignConfig with_describing_functions(const CampaignConfig& config,
-                                         const std::filesystem::path& file) {
+                                         const std::filesystem::path& file, double scale) {
     CampaignConfig out = config;
     const std::filesystem::path absolute = std::filesystem::absolute(file).lexically_normal();
     for (auto& d : out.campaign.dampers) {
         if (d.model != DamperSpec::Model::dem) continue;
         d.model = DamperSpec::Model::describing_function;
         d.characterization_file = absolute;
+        d.characterization_scale = scale;
     }
     return out;
 }
@@ -391,6 +420,11 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
                 context.progress("warning: damper " + d.name + " of this config (" + mine +
                                  ") is not the damper characterised in " +
                                  d.characterization_file.string() + " (" + hash + ")");
+            }
+        }
+        if (context.progress) {
+            if (const auto line = bed_mass_mismatch(d, table, campaign.seed)) {
+                context.progress(*line);
             }
         }
     }

@@ -23,10 +23,11 @@ Attachment describing_function_attachment(const CampaignConfig& config, const Da
                                           const PreparedArrangement& prepared);
 
 /// The config with every damper whose model is dem represented by the describing function of
-/// `file` instead (model = describing-function, characterization_file = file): what `predict
-/// --characterization FILE` predicts; its hash says so.
+/// `file` instead (model = describing-function, characterization_file = file,
+/// characterization_scale = scale): what `predict --characterization FILE [--scale S]`
+/// predicts; its hash says so.
 CampaignConfig with_describing_functions(const CampaignConfig& config,
-                                         const std::filesystem::path& file);
+                                         const std::filesystem::path& file, double scale = 1.0);
 
 /// What a prediction needs besides its config.
 struct PredictContext {

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "bench/campaign.hpp"
 #include "bench/campaign_plan.hpp"
@@ -156,6 +157,67 @@ TEST(Prediction, ARigidMassDescribingFunctionGivesTheLinearModelsFrfAndDamping) 
 
     const auto plan = plan_campaign(config, {});
     expect_linear(result, LoadedModes(plan.arrangements.front(), m));
+}
+
+TEST(Prediction, AQuarterOfARigidBedScaledFourTimesGivesTheWholeBedsLinearModel) {
+    // A quarter of the bed characterised (a rigid quarter: M = m/4), standing for the whole
+    // with characterization_scale = 4: the structure must carry the whole bed's mass.
+    const fs::path dir = fresh_dir("predict-scaled");
+    const auto plain = load_campaign_config_text(paper000_h0_with({}), "plain.toml");
+    const double m = particle_mass_kg(plain.campaign.dampers.front(), plain.campaign.seed);
+    const fs::path file = write_table(
+        dir, [m](double) { return Complex(0.25 * m, 0.0); }, 0.25 * m);
+    const auto config =
+        load_campaign_config_text(described_campaign(file, {{"model = \"describing-function\"",
+                                                             "model = \"describing-function\"\n"
+                                                             "characterization_scale = 4.0"}}),
+                                  "scaled.toml");
+    std::vector<std::string> lines;
+    PredictContext context;
+    context.progress = [&lines](const std::string& line) { lines.push_back(line); };
+    const CampaignResult result = predict_campaign(config, context);
+    const auto plan = plan_campaign(config, {});
+    expect_linear(result, LoadedModes(plan.arrangements.front(), m));
+    for (const auto& line : lines) {
+        EXPECT_EQ(line.find("warning"), std::string::npos) << line;
+    }
+
+    // The same file for the whole bed without the scale: a quarter of the mass, said so.
+    const auto unscaled = load_campaign_config_text(described_campaign(file), "unscaled.toml");
+    lines.clear();
+    const CampaignResult light = predict_campaign(unscaled, context);
+    const LoadedModes quarter(plan.arrangements.front(), 0.25 * m);
+    for (const auto& row : light.recording.points) {
+        const Complex measured = row.values[1].amplitude / row.values[0].amplitude;
+        EXPECT_NEAR(std::abs(measured) / std::abs(quarter.accelerance(row.frequency_hz)), 1.0, 0.02)
+            << row.frequency_hz;
+    }
+    int warned = 0;
+    for (const auto& line : lines) {
+        warned += line.find("characterization_scale 1 is") != std::string::npos &&
+                  line.find("(a scale of 4 would make them equal)") != std::string::npos;
+    }
+    EXPECT_EQ(warned, 1);
+}
+
+TEST(Prediction, TheScaleNeedsADescribingFunctionAndMustBePositive) {
+    const auto message = [](const std::string& text) {
+        try {
+            load_campaign_config_text(text, "bad.toml");
+        } catch (const config::ConfigException& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    const std::string on_dem = message(paper000_h0_with(
+        {{"point = \"damper\"", "point = \"damper\"\ncharacterization_scale = 4.0"}}));
+    EXPECT_NE(on_dem.find("dampers.pd.characterization_scale"), std::string::npos) << on_dem;
+    EXPECT_NE(on_dem.find("only with model = \"describing-function\""), std::string::npos)
+        << on_dem;
+    const std::string zero = message(described_campaign(
+        "t.csv", {{"model = \"describing-function\"",
+                   "model = \"describing-function\"\ncharacterization_scale = 0.0"}}));
+    EXPECT_NE(zero.find("dampers.pd.characterization_scale = 0"), std::string::npos) << zero;
 }
 
 TEST(Prediction, ALockedBedsDescribingFunctionGivesTheLinearModelsFrfAndDamping) {
