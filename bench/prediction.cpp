@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <functional>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -149,7 +150,65 @@ struct Solution {
     bool inside = true;
     bool settled = true;
     double damper_harmonics = 0.0;  ///< largest (|a2| + |a3|) / |a1| at a damper point [-]
+    /// Stable steady states found at this frequency (one damper under a fixed drive: every
+    /// root of the amplitude balance; otherwise 1, the one the iteration reached).
+    int stable_states = 1;
 };
+
+/// A steady amplitude of one damper under a fixed drive: a root of a = Phi(a).
+struct SteadyAmplitude {
+    double amplitude_m_s2 = 0.0;
+    bool stable = false;  ///< Phi crosses the diagonal from above: Phi'(a) < 1
+};
+
+/// Every steady amplitude of one damper point under a fixed drive, ascending:
+/// the roots of g(a) = Phi(a) - a with Phi(a) = F0 |h_pd| / |1 + h_pp M(a)|. An apparent mass
+/// that changes with the amplitude bends the resonance, and near its peak a fixed drive has
+/// up to three steady states (the jump of a stepped sine, as of a Duffing oscillator: the
+/// middle one unstable); a fixed point iterated from one start finds one of them at best and
+/// oscillates between them at worst. Every root lies in Phi's range, found first on a
+/// coarse scan over twelve decades; the roots are then bracketed on a fine logarithmic scan
+/// of that range and bisected. M is continuous (docs/characterisation.md), so is g.
+std::vector<SteadyAmplitude> steady_amplitudes(const std::function<double(double)>& phi) {
+    constexpr int kCoarsePerDecade = 24;
+    double low = std::numeric_limits<double>::infinity();
+    double high = 0.0;
+    for (int k = -6 * kCoarsePerDecade; k <= 6 * kCoarsePerDecade; ++k) {
+        const double v = phi(std::pow(10.0, static_cast<double>(k) / kCoarsePerDecade));
+        low = std::min(low, v);
+        high = std::max(high, v);
+    }
+    std::vector<SteadyAmplitude> roots;
+    if (!(low > 0.0) || !std::isfinite(high)) return roots;
+    if (high <= low * (1.0 + 1e-12)) return {{low, true}};  // a linear damper: Phi constant
+    low /= 1.01;
+    high *= 1.01;
+    constexpr int kFine = 2000;
+    const double step = std::log(high / low) / kFine;
+    const auto g = [&phi](double log_a) { return phi(std::exp(log_a)) - std::exp(log_a); };
+    double x0 = std::log(low);
+    double g0 = g(x0);  // > 0: Phi(low) >= low * 1.01
+    for (int k = 1; k <= kFine; ++k) {
+        const double x1 = std::log(low) + k * step;
+        const double g1 = g(x1);
+        if ((g0 > 0.0) != (g1 > 0.0)) {
+            double a = x0;
+            double b = x1;
+            for (int it = 0; it < 60; ++it) {
+                const double m = 0.5 * (a + b);
+                if ((g(m) > 0.0) == (g0 > 0.0)) {
+                    a = m;
+                } else {
+                    b = m;
+                }
+            }
+            roots.push_back({std::exp(0.5 * (a + b)), g0 > 0.0});
+        }
+        x0 = x1;
+        g0 = g1;
+    }
+    return roots;
+}
 
 /// A motion channel's phasor per unit acceleration phasor at angular frequency w: 1,
 /// 1 / (i w) for a velocity, -1 / w^2 for a displacement.
@@ -176,7 +235,8 @@ Complex per_acceleration(RecordedChannel::Quantity quantity, double w) {
 /// the control point is the only damper's point (its amplitude is the target's).
 Solution solve_point(const PreparedArrangement& prepared, const std::vector<Described>& dampers,
                      const std::vector<RecordedChannel>& channels, double level_g,
-                     double frequency_hz, std::optional<double> fixed_drive) {
+                     double frequency_hz, std::optional<double> fixed_drive,
+                     const std::vector<double>& previous) {
     const auto& model = prepared.model;
     const auto& basis = prepared.basis;
     const auto& excitation = prepared.structure.excitation;
@@ -253,6 +313,34 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
                        : channels.front().point == dampers[j].point
                            ? target_peak
                            : target_peak * h / std::abs(h_cd(0));
+    }
+    // Along a sweep, from the previous point's amplitudes: a stepped sine stays on the
+    // branch it is on.
+    if (previous.size() == nd) amplitude = previous;
+    if (fixed_drive && nd == 1) {
+        const auto phi = [&](double a) {
+            const Complex m = dampers[0].evaluate(a, frequency_hz).apparent_mass_kg;
+            return *fixed_drive * std::abs(h_pd(0)) / std::abs(1.0 + h_pp(0, 0) * m);
+        };
+        std::vector<double> stable;
+        for (const auto& root : steady_amplitudes(phi)) {
+            if (root.stable) stable.push_back(root.amplitude_m_s2);
+        }
+        if (!stable.empty()) {
+            // The branch the sweep is on (the nearest in ln a); the first point from rest,
+            // the lowest.
+            double chosen = stable.front();
+            if (previous.size() == 1) {
+                for (double a : stable) {
+                    if (std::abs(std::log(a / previous[0])) <
+                        std::abs(std::log(chosen / previous[0]))) {
+                        chosen = a;
+                    }
+                }
+            }
+            amplitude[0] = chosen;
+            s.stable_states = static_cast<int>(stable.size());
+        }
     }
     Eigen::VectorXcd mass(static_cast<Eigen::Index>(nd));
     Eigen::VectorXcd a_p;
@@ -462,6 +550,8 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
                  }});
         }
         const ShakerSpec& shaker = config.physics.shaker;
+        std::vector<double> previous;  // the amplitudes of the sweep's previous point
+        std::vector<double> several;   // frequencies with more than one stable steady state
         for (double f : task.frequencies_hz) {
             // Through a shaker the drive is a voltage: its blocked force per volt.
             const Complex per_volt = shaker.on() ? blocked_force_per_volt(shaker, f) : 1.0;
@@ -471,7 +561,9 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
                 fixed = campaign.drive.excitation_amplitude(task.level_g, f) * std::abs(per_volt);
             }
             const Solution s =
-                solve_point(prepared, dampers, result.channels, task.level_g, f, fixed);
+                solve_point(prepared, dampers, result.channels, task.level_g, f, fixed, previous);
+            if (s.converged) previous = s.amplitudes;
+            if (s.stable_states > 1) several.push_back(f);
             id::PointRow row;
             row.arrangement = prepared.arrangement.name;
             row.level_g = task.level_g;
@@ -517,6 +609,15 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
                                         row.status + ",0," + std::to_string(s.iterations) + "," +
                                         number_text(std::abs(row.values[0].amplitude)) + "," +
                                         number_text(row.values[1].rms) + "," + tried + ",");
+        }
+        if (!several.empty()) {
+            std::string line = sweep.key + ": more than one stable steady state at " +
+                               std::to_string(several.size()) + " frequencies (" +
+                               number_text(several.front()) + " to " + number_text(several.back()) +
+                               " Hz): the branch the sweep was on followed, as a stepped sine "
+                               "would (campaign.frequencies.direction)";
+            sweep.settings.push_back(line);
+            if (context.progress) context.progress(line);
         }
         result.sweeps.push_back(std::move(sweep));
     }

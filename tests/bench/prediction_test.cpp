@@ -7,11 +7,13 @@
 
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -357,6 +359,70 @@ characterization_file = ")" + file.string() +
         EXPECT_NEAR(std::abs(predicted - exact), 0.0, 1e-9 * std::abs(exact)) << row.frequency_hz;
         EXPECT_NEAR(row.values[1].rms, g_to_m_s2(1.0), 1e-9 * g_to_m_s2(1.0)) << "level held";
     }
+}
+
+TEST(Prediction, AFixedDriveFollowsTheBranchOfItsSweepAcrossAJump) {
+    // A bed that loses mass with the amplitude (lossless: M real, 3m at rest falling to m)
+    // bends the resonance towards higher frequencies, and near its peak a fixed force has
+    // three steady states, the middle one unstable: a stepped sine upward rides the upper
+    // branch past the linear peak and drops, downward it stays low and jumps up later.
+    const fs::path dir = fresh_dir("predict-jump");
+    const double m = 0.0132;
+    const double a0 = 15.0;  // [m/s^2], inside the characterised 4-42 m/s^2
+    const auto mass = [m, a0](double a) {
+        return Complex(m * (1.0 + 2.0 / (1.0 + (a / a0) * (a / a0))), 0.0);
+    };
+    const fs::path file = write_table(dir, mass, m);
+    auto config = load_campaign_config_text(described_campaign(file), "jump.toml");
+    const auto plan = plan_campaign(config, {});
+    const double f1 = plan.arrangements.front().first_mode_hz;
+    config.campaign.levels_g.clear();
+    config.campaign.drive.kind = DriveSpec::Kind::fixed;
+    const double force_n = 0.5;
+    config.campaign.drive.amplitudes = {force_n};
+    config.campaign.frequencies.values_hz.clear();
+    for (int k = 0; k <= 140; ++k)
+        config.campaign.frequencies.values_hz.push_back(f1 * (0.9 + 0.001 * k));
+    config.campaign.frequencies.refine_points = 0;
+
+    const DescribingFunction df =
+        describing_function_for(read_characterization_csv(file), file.string(), "pd", "H-0");
+    std::map<std::string, std::vector<double>> amplitude;  // per direction, ascending frequency
+    for (const auto direction :
+         {FrequencyGridSpec::Direction::up, FrequencyGridSpec::Direction::down}) {
+        config.campaign.frequencies.direction = direction;
+        const std::string name = direction == FrequencyGridSpec::Direction::up ? "up" : "down";
+        std::vector<std::string> lines;
+        PredictContext context;
+        context.progress = [&lines](const std::string& line) { lines.push_back(line); };
+        const CampaignResult result = predict_campaign(config, context);
+        std::map<double, double> by_frequency;
+        for (const auto& row : result.recording.points) {
+            EXPECT_NE(row.status, "uncertain") << name << " " << row.frequency_hz;
+            // The balance, against the loaded modes with the apparent mass at the point's own
+            // amplitude: a = F |H(M(a))|.
+            const double a = std::abs(row.values[1].amplitude);
+            const double m_a = df.evaluate(a, row.frequency_hz).apparent_mass_kg.real();
+            const LoadedModes loaded(plan.arrangements.front(), m_a);
+            EXPECT_NEAR(a, force_n * std::abs(loaded.accelerance(row.frequency_hz)), 1e-6 * a)
+                << name << " " << row.frequency_hz;
+            by_frequency[row.frequency_hz] = a;
+        }
+        for (const auto& [f, a] : by_frequency) amplitude[name].push_back(a);
+        int reported = 0;
+        for (const auto& line : lines)
+            reported += line.find("more than one stable steady state") != std::string::npos;
+        EXPECT_EQ(reported, 1) << name;
+    }
+    ASSERT_EQ(amplitude["up"].size(), amplitude["down"].size());
+    const double up_peak = *std::max_element(amplitude["up"].begin(), amplitude["up"].end());
+    const double down_peak = *std::max_element(amplitude["down"].begin(), amplitude["down"].end());
+    EXPECT_GT(up_peak, 1.2 * down_peak);
+    int apart = 0;  // the hysteresis loop: frequencies where the two sweeps differ
+    for (std::size_t k = 0; k < amplitude["up"].size(); ++k) {
+        apart += std::abs(amplitude["up"][k] - amplitude["down"][k]) > 0.2 * amplitude["down"][k];
+    }
+    EXPECT_GE(apart, 3);
 }
 
 TEST(Prediction, ADemDamperCannotBePredicted) {
