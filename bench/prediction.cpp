@@ -611,11 +611,14 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
                                         number_text(row.values[1].rms) + "," + tried + ",");
         }
         if (!several.empty()) {
-            std::string line = sweep.key + ": more than one stable steady state at " +
-                               std::to_string(several.size()) + " frequencies (" +
-                               number_text(several.front()) + " to " + number_text(several.back()) +
-                               " Hz): the branch the sweep was on followed, as a stepped sine "
-                               "would (campaign.frequencies.direction)";
+            const std::string where = several.size() == 1
+                                          ? number_text(several.front()) + " Hz"
+                                          : std::to_string(several.size()) + " frequencies (" +
+                                                number_text(several.front()) + " to " +
+                                                number_text(several.back()) + " Hz)";
+            const std::string line = sweep.key + ": more than one stable steady state at " + where +
+                                     ": the branch the sweep was on followed, as a stepped sine "
+                                     "would (campaign.frequencies.direction)";
             sweep.settings.push_back(line);
             if (context.progress) context.progress(line);
         }
