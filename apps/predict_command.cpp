@@ -4,11 +4,11 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
-#include <sstream>
 
 #include "bench/campaign_output.hpp"
 #include "bench/prediction.hpp"
 #include "config/errors.hpp"
+#include "config/value.hpp"
 #include "core/text_file.hpp"
 #include "identification/file_error.hpp"
 #include "load_config.hpp"
@@ -106,11 +106,8 @@ void register_predict_command(CLI::App& app, int& exit_code) {
         if (!args->characterization.empty()) {
             args->command_line += " --characterization " + args->characterization;
         }
-        if (args->scale != 1.0) {
-            std::ostringstream scale;
-            scale << std::setprecision(17) << args->scale;
-            args->command_line += " --scale " + scale.str();
-        }
+        if (args->scale != 1.0)
+            args->command_line += " --scale " + config::number_text(args->scale);
         args->command_line += overrides_text(args->overrides);
         exit_code = run(*args);
     });

@@ -155,21 +155,16 @@ struct Solution {
     int stable_states = 1;
 };
 
-/// A steady amplitude of one damper under a fixed drive: a root of a = Phi(a).
-struct SteadyAmplitude {
-    double amplitude_m_s2 = 0.0;
-    bool stable = false;  ///< Phi crosses the diagonal from above: Phi'(a) < 1
-};
-
-/// Every steady amplitude of one damper point under a fixed drive, ascending:
-/// the roots of g(a) = Phi(a) - a with Phi(a) = F0 |h_pd| / |1 + h_pp M(a)|. An apparent mass
-/// that changes with the amplitude bends the resonance, and near its peak a fixed drive has
-/// up to three steady states (the jump of a stepped sine, as of a Duffing oscillator: the
-/// middle one unstable); a fixed point iterated from one start finds one of them at best and
-/// oscillates between them at worst. Every root lies in Phi's range, found first on a
-/// coarse scan over twelve decades; the roots are then bracketed on a fine logarithmic scan
-/// of that range and bisected. M is continuous (docs/characterisation.md), so is g.
-std::vector<SteadyAmplitude> steady_amplitudes(const std::function<double(double)>& phi) {
+/// Every stable steady amplitude of one damper point under a fixed drive, ascending: the
+/// roots of g(a) = Phi(a) - a where Phi crosses the diagonal from above (Phi'(a) < 1), with Phi(a)
+/// = F0 |h_pd| / |1 + h_pp M(a)|. An apparent mass that changes with the amplitude bends the
+/// resonance, and near its peak a fixed drive has up to three steady states (the jump of a stepped
+/// sine, as of a Duffing oscillator: the middle one unstable); a fixed point iterated from one
+/// start finds one of them at best and oscillates between them at worst. Every root lies in Phi's
+/// range, found first on a coarse scan over twelve decades; the roots are then bracketed on a fine
+/// logarithmic scan of that range and bisected. M is continuous (docs/characterisation.md), so is
+/// g.
+std::vector<double> stable_steady_amplitudes(const std::function<double(double)>& phi) {
     constexpr int kCoarsePerDecade = 24;
     double low = std::numeric_limits<double>::infinity();
     double high = 0.0;
@@ -178,9 +173,9 @@ std::vector<SteadyAmplitude> steady_amplitudes(const std::function<double(double
         low = std::min(low, v);
         high = std::max(high, v);
     }
-    std::vector<SteadyAmplitude> roots;
+    std::vector<double> roots;
     if (!(low > 0.0) || !std::isfinite(high)) return roots;
-    if (high <= low * (1.0 + 1e-12)) return {{low, true}};  // a linear damper: Phi constant
+    if (high <= low * (1.0 + 1e-12)) return {low};  // a linear damper: Phi constant
     low /= 1.01;
     high *= 1.01;
     constexpr int kFine = 2000;
@@ -191,18 +186,18 @@ std::vector<SteadyAmplitude> steady_amplitudes(const std::function<double(double
     for (int k = 1; k <= kFine; ++k) {
         const double x1 = std::log(low) + k * step;
         const double g1 = g(x1);
-        if ((g0 > 0.0) != (g1 > 0.0)) {
+        if (g0 > 0.0 && g1 <= 0.0) {  // the middle, unstable roots cross from below
             double a = x0;
             double b = x1;
             for (int it = 0; it < 60; ++it) {
                 const double m = 0.5 * (a + b);
-                if ((g(m) > 0.0) == (g0 > 0.0)) {
+                if (g(m) > 0.0) {
                     a = m;
                 } else {
                     b = m;
                 }
             }
-            roots.push_back({std::exp(0.5 * (a + b)), g0 > 0.0});
+            roots.push_back(std::exp(0.5 * (a + b)));
         }
         x0 = x1;
         g0 = g1;
@@ -322,10 +317,7 @@ Solution solve_point(const PreparedArrangement& prepared, const std::vector<Desc
             const Complex m = dampers[0].evaluate(a, frequency_hz).apparent_mass_kg;
             return *fixed_drive * std::abs(h_pd(0)) / std::abs(1.0 + h_pp(0, 0) * m);
         };
-        std::vector<double> stable;
-        for (const auto& root : steady_amplitudes(phi)) {
-            if (root.stable) stable.push_back(root.amplitude_m_s2);
-        }
+        const std::vector<double> stable = stable_steady_amplitudes(phi);
         if (!stable.empty()) {
             // The branch the sweep is on (the nearest in ln a); the first point from rest,
             // the lowest.
