@@ -1,6 +1,7 @@
 // `shakerbench characterize`: the describing functions of a config's dampers.
 #include "characterize_command.hpp"
 
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -10,6 +11,7 @@
 
 #include "bench/characterization.hpp"
 #include "bench/characterization_energy.hpp"
+#include "bench/checkpoint_store.hpp"
 #include "config/errors.hpp"
 #include "core/text_file.hpp"
 #include "dem/solver.hpp"
@@ -33,6 +35,7 @@ struct CharacterizeArgs {
     int threads = 0;
     bool quiet = false;
     bool energy = false;
+    bool restart = false;
     std::vector<std::string> overrides;
     std::string command_line;
 };
@@ -87,6 +90,11 @@ int run(const CharacterizeArgs& args) {
     const bool energy = args.energy || config->campaign.output.energy;
     if (energy) options.energy_layers = config->campaign.output.energy_layers;
     options.command_line = args.command_line;
+    // The runs and beds finished so far are kept in the output directory: an interrupted or
+    // extended characterisation simulates only what is missing. Rank 0 alone writes it.
+    bench::FileCheckpointStore store(out_dir);
+    options.store = &store;
+    options.restart = args.restart;
     if (!args.quiet && root) {
         options.progress = [](const std::string& line) { std::cerr << line << '\n' << std::flush; };
     }
@@ -120,9 +128,11 @@ int run(const CharacterizeArgs& args) {
         session->transport(), 1,
         [&worker](const std::string& run, int /*threads*/) { return worker->run(run); }, threads);
     if (session->size() > 1) {
-        options.remote = [&rounds](const std::vector<std::string>& runs) {
-            return rounds.run(runs);
-        };
+        options.remote =
+            [&rounds](const std::vector<std::string>& runs,
+                      const std::function<void(std::size_t, const std::string&)>& on_result) {
+                return rounds.run(runs, on_result);
+            };
     }
     try {
         const bench::CharacterizeResult result = bench::characterize(*config, options);
@@ -144,9 +154,10 @@ int run(const CharacterizeArgs& args) {
                                   bench::bed_spectrum_csv_text(result));
         }
         std::cout << "characterised " << result.table.rows.size() << " grid points (" << result.runs
-                  << " runs over the fillings, " << result.unsettled_runs << " not settled), "
-                  << result.periods << " periods simulated in " << std::fixed
-                  << std::setprecision(1) << result.wall_time_s << " s\n"
+                  << " runs over the fillings, " << result.resumed_runs
+                  << " of them taken from the store, " << result.unsettled_runs << " not settled), "
+                  << result.periods << " periods in " << std::fixed << std::setprecision(1)
+                  << result.wall_time_s << " s\n"
                   << "characterisation: " << file.string() << '\n';
         return 0;
     } catch (const config::ConfigException& e) {
@@ -155,8 +166,17 @@ int run(const CharacterizeArgs& args) {
     } catch (const identification::FileError& e) {
         std::cerr << "shakerbench characterize: " << e.what() << '\n';
         return config::kExitBadInput;
+    } catch (const FileWriteError& e) {
+        // Not bad input: the same command succeeds once the disk has room or the folder is
+        // writable, and resumes the runs stored before.
+        std::cerr << "shakerbench characterize: " << e.what() << "; " << e.remedy()
+                  << "; the runs finished before are kept in " << out_dir.string()
+                  << "/results and resumed by the same command\n";
+        return config::kExitFailure;
     } catch (const dem::SimulationError& e) {
-        std::cerr << "shakerbench characterize: simulation failed: " << e.what() << '\n';
+        std::cerr << "shakerbench characterize: simulation failed: " << e.what()
+                  << "\nFinished runs are kept in " << out_dir.string()
+                  << "/results; fix the config and run again to resume.\n";
         return config::kExitFailure;
     } catch (const std::exception& e) {
         std::cerr << "shakerbench characterize: " << e.what() << '\n';
@@ -221,6 +241,11 @@ void register_characterize_command(CLI::App& app, int& exit_code) {
                   "DIR/characterization_energy.csv, the spectra of the bed's kinetic energy and "
                   "dissipated power in DIR/energy_spectrum.csv (as output.energy = true)");
     cmd->add_flag("-q,--quiet", args->quiet, "no progress lines");
+    cmd->add_flag("--restart", args->restart,
+                  "discard the runs and settled beds stored in the output directory for this "
+                  "config and start over (by default a run already stored there is taken from "
+                  "it, so an interrupted or extended characterisation simulates only what is "
+                  "missing)");
     add_set_option(*cmd, args->overrides);
     cmd->callback([args, &exit_code] {
         std::string line = "shakerbench characterize";
@@ -235,6 +260,7 @@ void register_characterize_command(CLI::App& app, int& exit_code) {
         }
         line += " --seeds " + std::to_string(args->seeds) + " --rotation " + args->rotation;
         if (args->energy) line += " --energy";
+        if (args->restart) line += " --restart";
         line += overrides_text(args->overrides);
         args->command_line = line;
         exit_code = run(*args);

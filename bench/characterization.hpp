@@ -18,6 +18,7 @@
 
 #include "bench/campaign_config.hpp"
 #include "bench/campaign_plan.hpp"
+#include "bench/checkpoint_store.hpp"
 #include "bench/describing_function.hpp"
 #include "core/violation.hpp"
 #include "dem/solver.hpp"
@@ -150,8 +151,21 @@ struct CharacterizeOptions {
     std::string command_line;  ///< for the file's header
     /// Runs the grid in other processes (MPI ranks; distributed/rounds.hpp): given each run's
     /// number as text, returns each one's result as text (CharacterizationWorker::run's
-    /// output), in order. Empty: this process's threads run it.
-    std::function<std::vector<std::string>(const std::vector<std::string>& run_numbers)> remote;
+    /// output), in order, and hands each to `on_result` (its index among the numbers, the
+    /// text) as it arrives, so that it is stored at once. Empty: this process's threads run
+    /// it.
+    std::function<std::vector<std::string>(
+        const std::vector<std::string>& run_numbers,
+        const std::function<void(std::size_t index, const std::string& result)>& on_result)>
+        remote;
+    /// Keeps every finished run and settled bed, opened by characterize() with the config's
+    /// hash: a characterisation interrupted, or extended by levels, frequencies or fillings,
+    /// simulates only what the store does not hold, and gives the numbers an uninterrupted
+    /// one gives. Each run is kept under a key of everything its numbers depend on beyond the
+    /// config (level, frequency, filling, contact stiffness and step, the criterion, the
+    /// rotation, the energy layers). Null: nothing kept.
+    CheckpointStore* store = nullptr;
+    bool restart = false;  ///< the store forgets what it holds for this config first
 };
 
 /// One run of a characterisation: a grid point on one filling.
@@ -167,9 +181,11 @@ struct CharacterizedRun {
 struct CharacterizeResult {
     CharacterizationTable table;
     std::vector<CharacterizedRun> runs_by_filling;  ///< every run, in the grid's order
-    int runs = 0;                                   ///< grid points x fillings simulated
+    int runs = 0;                                   ///< grid points x fillings
+    int resumed_runs = 0;                           ///< of them, read back from the store
+    int beds_settled = 0;                           ///< beds settled by this call
     int unsettled_runs = 0;                         ///< of them, not steady within the budget
-    long long periods = 0;                          ///< simulated in all
+    long long periods = 0;                          ///< of every run, resumed ones included
     double wall_time_s = 0.0;
 };
 

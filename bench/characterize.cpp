@@ -18,7 +18,9 @@
 #include "bench/attachment.hpp"
 #include "bench/characterization.hpp"
 #include "bench/resolved_config.hpp"
+#include "bench/sweep_checkpoint.hpp"
 #include "config/errors.hpp"
+#include "config/write.hpp"
 #include "core/units.hpp"
 #include "dem/setup.hpp"
 
@@ -75,7 +77,8 @@ config::ConfigError problem(const CampaignConfig& config, std::string key, std::
 }  // namespace
 
 /// What characterize() runs: one bed per arrangement, damper, level and seed (the contact
-/// stiffness follows the level, as in the campaign); one run per grid point and seed. Every
+/// stiffness chosen as the campaign chooses it; beds with the same stiffness and seed are one
+/// bed); one run per grid point and seed. Every
 /// process that plans the same config and options gets the same beds and runs in the same
 /// order.
 struct CharacterizationGrid {
@@ -85,11 +88,17 @@ struct CharacterizationGrid {
         double level_g = 0.0;
         std::uint64_t seed = 0;
         dem::ExcitationContact contact;
+        /// The store's key: arrangement, damper, filling and stiffness (not the level: with
+        /// one stiffness for the campaign every level shakes the same bed).
+        std::string key;
+        std::size_t same_as = 0;  ///< the first bed with this key: it is settled once
     };
     struct Run {
         std::size_t bed = 0;
         double frequency_hz = 0.0;
         ApparentMassPoint result;
+        std::string key;      ///< the store's key
+        bool stored = false;  ///< read back from the store
     };
     std::vector<double> levels;
     std::vector<const DamperSpec*> dampers;
@@ -106,6 +115,54 @@ struct CharacterizationGrid {
 };
 
 namespace {
+
+/// A number as exact text (a hexadecimal float), for results passed between processes.
+std::string hex_text(double v) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "%a", v);
+    return buffer;
+}
+
+/// The largest time step of the runs of `bed`: the contact's, or a 256th of the period of
+/// the grid's lowest frequency (every run of an arrangement takes the same).
+double step_limit_s(const CharacterizationGrid& grid, const CharacterizationGrid::Bed& bed) {
+    return std::min(bed.contact.time_step_s, 1.0 / (256.0 * grid.grids[bed.arrangement].front()));
+}
+
+/// The store's keys: a readable part (where, which level, frequency and filling) and a hash
+/// of every number the result depends on beyond the config, which the store's own hash
+/// covers. A key names the same numbers whatever else the grid holds, so a characterisation
+/// extended by levels, frequencies or fillings finds the runs it shares with an earlier one.
+void assign_keys(CharacterizationGrid& grid, const CharacterizeOptions& options) {
+    std::map<std::string, std::size_t> first_bed;
+    for (std::size_t b = 0; b < grid.beds.size(); ++b) {
+        auto& bed = grid.beds[b];
+        const std::string where =
+            grid.plan.arrangements[bed.arrangement].arrangement.name + "_" + bed.damper->name;
+        bed.key = where + "_seed" + std::to_string(bed.seed) + "_" +
+                  config::fnv1a_hex(hex_text(bed.contact.stiffness)).substr(0, 8);
+        bed.same_as = first_bed.emplace(bed.key, b).first->second;
+    }
+    const SteadyStateOptions& st = options.steady;
+    std::ostringstream common;
+    common << st.transient_periods << ' ' << st.window_periods << ' ' << hex_text(st.tolerance)
+           << ' ' << st.max_periods << ' ' << hex_text(st.energy_tolerance) << ' '
+           << options.energy_layers << ' ' << (options.rotation ? 1 : 0);
+    for (auto& run : grid.runs) {
+        const auto& bed = grid.beds[run.bed];
+        const Eigen::Vector3d& turn =
+            grid.rotations[bed.arrangement * grid.dampers.size() + grid.damper_index(bed.damper)];
+        std::ostringstream numbers;
+        numbers << common.str() << ' ' << hex_text(bed.level_g) << ' ' << hex_text(run.frequency_hz)
+                << ' ' << hex_text(bed.contact.stiffness) << ' '
+                << hex_text(step_limit_s(grid, bed)) << ' ' << hex_text(turn.x()) << ' '
+                << hex_text(turn.y()) << ' ' << hex_text(turn.z()) << ' ' << bed.seed;
+        run.key = grid.plan.arrangements[bed.arrangement].arrangement.name + "_" +
+                  bed.damper->name + "_" + number_text(bed.level_g) + "g_" +
+                  number_text(run.frequency_hz) + "Hz_seed" + std::to_string(bed.seed) + "_" +
+                  config::fnv1a_hex(numbers.str());
+    }
+}
 
 CharacterizationGrid plan_grid(const CampaignConfig& config, const CharacterizeOptions& options) {
     CharacterizationGrid grid_plan;
@@ -133,6 +190,23 @@ CharacterizationGrid plan_grid(const CampaignConfig& config, const CharacterizeO
                                        "frequency to characterise [Hz]"));
         }
     }
+    // A value given twice would be run twice and its row would average both runs' fillings
+    // as if they were twice as many.
+    for (std::size_t i = 0; i < levels.size(); ++i) {
+        if (std::find(levels.begin(), levels.begin() + static_cast<std::ptrdiff_t>(i), levels[i]) !=
+            levels.begin() + static_cast<std::ptrdiff_t>(i)) {
+            problems.push_back(problem(config, "levels_g", number_text(levels[i]), "is given twice",
+                                       "level to characterise [g]"));
+        }
+    }
+    const auto& fs = options.frequencies_hz;
+    for (std::size_t i = 0; i < fs.size(); ++i) {
+        if (std::find(fs.begin(), fs.begin() + static_cast<std::ptrdiff_t>(i), fs[i]) !=
+            fs.begin() + static_cast<std::ptrdiff_t>(i)) {
+            problems.push_back(problem(config, "frequencies_hz", number_text(fs[i]),
+                                       "is given twice", "frequency to characterise [Hz]"));
+        }
+    }
     if (dampers.empty()) {
         problems.push_back(problem(config, "dampers", "", "needs a damper whose model is not rigid",
                                    "the dampers to characterise"));
@@ -158,6 +232,12 @@ CharacterizationGrid plan_grid(const CampaignConfig& config, const CharacterizeO
     auto& beds = grid_plan.beds;
     auto& grids = grid_plan.grids;
     auto& rotations = grid_plan.rotations;
+    // An automatic stiffness sized for the campaign (contact.stiffness_for = "campaign", the
+    // default) is the campaign's: sized for its largest level (or the largest RMS its fixed
+    // drive gives, campaign_plan.cpp), and for the largest characterised level if that is
+    // larger, so that every level runs the numerics a sweep of `shakerbench run` runs.
+    double largest_g = *std::max_element(levels.begin(), levels.end());
+    for (const auto& task : plan.tasks) largest_g = std::max(largest_g, task.stiffness_level_g);
     for (std::size_t a = 0; a < plan.arrangements.size(); ++a) {
         const PreparedArrangement& prepared = plan.arrangements[a];
         std::vector<double> grid = options.frequencies_hz;
@@ -181,9 +261,13 @@ CharacterizationGrid plan_grid(const CampaignConfig& config, const CharacterizeO
                                     ? rotation_per_translation(prepared, damper->point, direction)
                                     : Eigen::Vector3d::Zero());
             for (double level : levels) {
-                // One contact per level: every filling runs the same law and step.
+                // One contact per level (or one for all): every filling runs the same law
+                // and step.
+                const double sized_for_g =
+                    damper->contact.stiffness_for == ContactSpec::StiffnessFor::campaign ? largest_g
+                                                                                         : level;
                 const dem::ExcitationContact contact = damper->excitation_contact(
-                    std::sqrt(2.0) * g_to_m_s2(level), prepared.first_mode_hz);
+                    std::sqrt(2.0) * g_to_m_s2(sized_for_g), prepared.first_mode_hz);
                 for (int s = 0; s < options.seeds; ++s) {
                     CharacterizationGrid::Bed bed;
                     bed.arrangement = a;
@@ -197,19 +281,30 @@ CharacterizationGrid plan_grid(const CampaignConfig& config, const CharacterizeO
         }
     }
     for (std::size_t b = 0; b < beds.size(); ++b) {
-        for (double f : grids[beds[b].arrangement]) grid_plan.runs.push_back({b, f, {}});
+        for (double f : grids[beds[b].arrangement]) grid_plan.runs.push_back({b, f, {}, {}, false});
     }
-
+    assign_keys(grid_plan, options);
     return grid_plan;
 }
 
-/// The settled bed of bed `b` of the grid.
-dem::ParticleSet settle(const CharacterizationGrid& grid, std::size_t b) {
+/// The settled bed of bed `b` of the grid, from the store when it holds it. Always read back
+/// from its text (17 significant digits, exact), as the campaign does: a bed settled now, one
+/// read from the store and one settled on another rank give the same numbers.
+dem::ParticleSet settle(const CharacterizationGrid& grid, std::size_t b, CheckpointStore* store,
+                        int& settled_here) {
     const auto& bed = grid.beds[b];
-    const PreparedArrangement& prepared = grid.plan.arrangements[bed.arrangement];
-    const DamperMounting mounting = damper_mounting(prepared.arrangement, *bed.damper);
-    return settled_bed(*bed.damper, bed.contact.stiffness, mounting.rotation,
-                       prepared.structure.gravity_m_s2, bed.seed);
+    std::optional<std::string> text;
+    if (store != nullptr) text = store->load_bed(bed.key);
+    if (!text) {
+        const PreparedArrangement& prepared = grid.plan.arrangements[bed.arrangement];
+        const DamperMounting mounting = damper_mounting(prepared.arrangement, *bed.damper);
+        text =
+            dem::particles_text(settled_bed(*bed.damper, bed.contact.stiffness, mounting.rotation,
+                                            prepared.structure.gravity_m_s2, bed.seed));
+        ++settled_here;
+        if (store != nullptr) store->save_bed(bed.key, *text);
+    }
+    return dem::parse_particles_text(*text, bed.key);
 }
 
 /// Run `r` of the grid on its settled bed.
@@ -227,8 +322,7 @@ ApparentMassPoint measure(const CampaignConfig& config, const CharacterizeOption
     setup.mount_rotation = mounting.rotation;
     setup.offset_m = mounting.origin_m;
     setup.bed = particles;
-    const auto& frequencies = grid.grids[bed.arrangement];
-    setup.dt_max_s = std::min(bed.contact.time_step_s, 1.0 / (256.0 * frequencies.front()));
+    setup.dt_max_s = step_limit_s(grid, bed);
     setup.options.energy_layers = options.energy_layers;
     setup.bed_energy = options.energy_layers > 0;
     HarmonicDrive drive;
@@ -238,13 +332,6 @@ ApparentMassPoint measure(const CampaignConfig& config, const CharacterizeOption
     drive.acceleration_m_s2 = std::sqrt(2.0) * g_to_m_s2(bed.level_g);
     drive.frequency_hz = run.frequency_hz;
     return measure_apparent_mass(setup, drive, options.steady);
-}
-
-/// A number as exact text (a hexadecimal float), for results passed between processes.
-std::string hex_text(double v) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%a", v);
-    return buffer;
 }
 
 /// A list as its length and its values.
@@ -343,55 +430,123 @@ void report(const CharacterizeOptions& options, const CharacterizationGrid& grid
     options.progress(line.str());
 }
 
-/// Every run on this process's threads: the beds settled first, then the runs; the numbers
-/// depend neither on the thread count nor on the order they finish in. No exception leaves a
-/// parallel region.
-void run_here(const CampaignConfig& config, const CharacterizeOptions& options,
-              CharacterizationGrid& grid) {
+/// A run's result text as the store keeps it: a line, then its checksum line.
+std::string sealed(const std::string& point) { return seal_checkpoint(point + '\n'); }
+
+/// Every run not yet in the store on this process's threads: the beds they need settled
+/// first (or read from the store), then the runs, each kept in the store as it ends; the
+/// numbers depend neither on the thread count nor on the order they finish in. No exception
+/// leaves a parallel region.
+int run_here(const CampaignConfig& config, const CharacterizeOptions& options,
+             CharacterizationGrid& grid) {
     const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+    std::vector<std::size_t> to_run, to_settle;
+    std::vector<char> needed(grid.beds.size(), 0);
+    for (std::size_t r = 0; r < grid.runs.size(); ++r) {
+        if (grid.runs[r].stored) continue;
+        to_run.push_back(r);
+        const std::size_t b = grid.beds[grid.runs[r].bed].same_as;
+        if (!needed[b]) to_settle.push_back(b);
+        needed[b] = 1;
+    }
     std::vector<dem::ParticleSet> beds(grid.beds.size());
-    std::vector<std::exception_ptr> errors(std::max(grid.beds.size(), grid.runs.size()));
+    std::vector<std::exception_ptr> errors(std::max(to_settle.size(), to_run.size()));
+    std::vector<int> settled(to_settle.size(), 0);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-    for (std::size_t b = 0; b < grid.beds.size(); ++b) {
+    for (std::size_t k = 0; k < to_settle.size(); ++k) {
         try {
-            beds[b] = settle(grid, b);
+            beds[to_settle[k]] = settle(grid, to_settle[k], options.store, settled[k]);
         } catch (...) {
-            errors[b] = std::current_exception();
+            errors[k] = std::current_exception();
         }
     }
     for (const auto& e : errors) {
         if (e) std::rethrow_exception(e);
     }
     std::mutex progress_mutex;
-    int done = 0;
+    int done = static_cast<int>(grid.runs.size() - to_run.size());
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-    for (std::size_t r = 0; r < grid.runs.size(); ++r) {
+    for (std::size_t k = 0; k < to_run.size(); ++k) {
+        const std::size_t r = to_run[k];
         try {
-            grid.runs[r].result = measure(config, options, grid, r, beds[grid.runs[r].bed]);
+            auto& run = grid.runs[r];
+            run.result = measure(config, options, grid, r, beds[grid.beds[run.bed].same_as]);
+            if (options.store != nullptr) {
+                options.store->save_result(run.key, sealed(point_text(run.result)));
+            }
             std::lock_guard<std::mutex> lock(progress_mutex);
             report(options, grid, r, ++done);
         } catch (...) {
-            errors[r] = std::current_exception();
+            errors[k] = std::current_exception();
         }
     }
     for (const auto& e : errors) {
         if (e) std::rethrow_exception(e);
     }
+    int count = 0;
+    for (int n : settled) count += n;
+    return count;
 }
 
-/// Every run handed to options.remote, its number as the input.
+/// Every run not yet in the store handed to options.remote, its number as the input; each
+/// result kept in the store as it arrives.
 void run_remotely(const CharacterizeOptions& options, CharacterizationGrid& grid) {
     std::vector<std::string> inputs;
-    for (std::size_t r = 0; r < grid.runs.size(); ++r) inputs.push_back(std::to_string(r));
-    const auto outputs = options.remote(inputs);
-    if (outputs.size() != grid.runs.size()) {
-        throw std::runtime_error("characterisation: " + std::to_string(outputs.size()) +
-                                 " results for " + std::to_string(grid.runs.size()) + " runs");
-    }
+    std::vector<std::size_t> to_run;
     for (std::size_t r = 0; r < grid.runs.size(); ++r) {
-        grid.runs[r].result = parse_point(outputs[r]);
-        report(options, grid, r, static_cast<int>(r + 1));
+        if (grid.runs[r].stored) continue;
+        to_run.push_back(r);
+        inputs.push_back(std::to_string(r));
     }
+    if (to_run.empty()) return;
+    int done = static_cast<int>(grid.runs.size() - to_run.size());
+    const auto keep = [&](std::size_t index, const std::string& text) {
+        if (index >= to_run.size()) return;
+        auto& run = grid.runs[to_run[index]];
+        run.result = parse_point(text);
+        if (options.store != nullptr) options.store->save_result(run.key, sealed(text));
+        report(options, grid, to_run[index], ++done);
+    };
+    const auto outputs = options.remote(inputs, keep);
+    if (outputs.size() != to_run.size()) {
+        throw std::runtime_error("characterisation: " + std::to_string(outputs.size()) +
+                                 " results for " + std::to_string(to_run.size()) + " runs");
+    }
+    for (std::size_t k = 0; k < to_run.size(); ++k) {
+        grid.runs[to_run[k]].result = parse_point(outputs[k]);
+    }
+}
+
+/// Opens the store and reads back every run it holds. A stored result that is damaged is
+/// refused before anything runs, every one named.
+void resume_from_store(const CampaignConfig& config, const CharacterizeOptions& options,
+                       CharacterizationGrid& grid) {
+    CheckpointStore* store = options.store;
+    if (store == nullptr) return;
+    store->open(config_hash(config), options.restart);
+    std::vector<config::ConfigError> problems;
+    for (auto& run : grid.runs) {
+        const std::optional<std::string> text = store->load_result(run.key);
+        if (!text) continue;
+        const std::string content(checkpoint_content(*text));
+        std::string damage;
+        if (seal_checkpoint(content) != *text) {
+            damage = "its checksum does not match its content (cut short or changed)";
+        } else {
+            try {
+                run.result = parse_point(content);
+                run.stored = true;
+            } catch (const std::exception& e) {
+                damage = e.what();
+            }
+        }
+        if (!damage.empty()) {
+            problems.push_back({store->result_name(run.key), 0, 0, "(stored result)", "", damage,
+                                "cannot be resumed: delete it to run that point again, or run "
+                                "again with --restart to discard every stored result"});
+        }
+    }
+    if (!problems.empty()) throw config::ConfigException(std::move(problems));
 }
 
 }  // namespace
@@ -412,7 +567,7 @@ std::string CharacterizationWorker::run(const std::string& run_text) {
         throw std::invalid_argument("characterisation: no run " + run_text);
     }
     const auto run = static_cast<std::size_t>(r);
-    const std::size_t b = grid_->runs[run].bed;
+    const std::size_t b = grid_->beds[grid_->runs[run].bed].same_as;
     // A process settles each bed it needs once (two threads asking at once may both settle
     // it: the same bed), and its runs at the other frequencies reuse it.
     std::shared_ptr<const dem::ParticleSet> bed;
@@ -422,7 +577,8 @@ std::string CharacterizationWorker::run(const std::string& run_text) {
         if (it != beds_.end()) bed = it->second;
     }
     if (!bed) {
-        bed = std::make_shared<const dem::ParticleSet>(settle(*grid_, b));
+        int settled = 0;
+        bed = std::make_shared<const dem::ParticleSet>(settle(*grid_, b, nullptr, settled));
         std::lock_guard<std::mutex> lock(mutex_);
         beds_.emplace(b, bed);
     }
@@ -432,10 +588,18 @@ std::string CharacterizationWorker::run(const std::string& run_text) {
 CharacterizeResult characterize(const CampaignConfig& config, const CharacterizeOptions& options) {
     const auto started = std::chrono::steady_clock::now();
     CharacterizationGrid grid = plan_grid(config, options);
+    resume_from_store(config, options, grid);
+    int resumed = 0;
+    for (const auto& run : grid.runs) resumed += run.stored ? 1 : 0;
+    if (options.progress && resumed > 0) {
+        options.progress("resumed " + std::to_string(resumed) + " of " +
+                         std::to_string(grid.runs.size()) + " runs from the store");
+    }
+    int beds_settled = 0;
     if (options.remote) {
         run_remotely(options, grid);
     } else {
-        run_here(config, options, grid);
+        beds_settled = run_here(config, options, grid);
     }
     const auto& levels = grid.levels;
     const auto& dampers = grid.dampers;
@@ -447,6 +611,8 @@ CharacterizeResult characterize(const CampaignConfig& config, const Characterize
     const auto damper_index = [&](const DamperSpec* d) { return grid.damper_index(d); };
 
     CharacterizeResult result;
+    result.resumed_runs = resumed;
+    result.beds_settled = beds_settled;
     CharacterizationTable& table = result.table;
     table.config = config.source;
     table.config_hash = config_hash(config);

@@ -18,7 +18,7 @@ void FileCheckpointStore::open(const std::string& config_hash, bool restart) {
     hash_ = config_hash;
     if (restart) {
         // Everything computed for another config, or for this one from the start.
-        for (const char* dir : {"checkpoints", "settled", "series", "vtk"}) {
+        for (const char* dir : {"checkpoints", "settled", "results", "series", "vtk"}) {
             std::error_code error;
             fs::remove_all(directory_ / dir, error);
             if (error) throw FileWriteError(directory_ / dir, error);
@@ -89,7 +89,7 @@ void FileCheckpointStore::remove_partial_files() const {
     // .partial files are not ours (those of the recording's own files are overwritten by the
     // next write of the same file).
     std::vector<fs::path> partial;
-    for (const char* dir : {"checkpoints", "settled", "series", "vtk"}) {
+    for (const char* dir : {"checkpoints", "settled", "results", "series", "vtk"}) {
         std::error_code error;
         for (auto it = fs::directory_iterator(directory_ / dir, error);
              !error && it != fs::directory_iterator(); it.increment(error)) {
@@ -125,6 +125,21 @@ void FileCheckpointStore::save_bed(const std::string& bed_key, const std::string
     save_file("settled/" + bed_key + "_" + hash_ + ".csv", text);
 }
 
+std::string FileCheckpointStore::result_name(const std::string& result_key) const {
+    return (directory_ / "results" / (result_key + "_" + hash_ + ".txt")).string();
+}
+
+std::optional<std::string> FileCheckpointStore::load_result(const std::string& result_key) {
+    // As a bed's, the file name carries the config's hash.
+    const fs::path file = result_name(result_key);
+    if (!fs::exists(file)) return std::nullopt;
+    return read_text_file(file);
+}
+
+void FileCheckpointStore::save_result(const std::string& result_key, const std::string& text) {
+    save_file("results/" + result_key + "_" + hash_ + ".txt", text);
+}
+
 void FileCheckpointStore::save_file(const std::string& relative_path, const std::string& text) {
     const fs::path file = directory_ / relative_path;
     create_directories_for_writing(file.parent_path());
@@ -137,7 +152,7 @@ void MemoryCheckpointStore::open(const std::string& config_hash, bool restart) {
     hash_ = config_hash;
     if (restart) {
         const std::string prefix = hash_ + "/";
-        for (auto* map : {&checkpoints_, &beds_, &files_}) {
+        for (auto* map : {&checkpoints_, &beds_, &results_, &files_}) {
             std::erase_if(*map, [&](const auto& kv) { return kv.first.rfind(prefix, 0) == 0; });
         }
     }
@@ -170,6 +185,16 @@ std::optional<std::string> MemoryCheckpointStore::load_bed(const std::string& be
 void MemoryCheckpointStore::save_bed(const std::string& bed_key, const std::string& text) {
     std::lock_guard<std::mutex> lock(mutex_);
     beds_[hash_ + "/" + bed_key] = text;
+}
+
+std::optional<std::string> MemoryCheckpointStore::load_result(const std::string& result_key) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return find(results_, hash_ + "/" + result_key);
+}
+
+void MemoryCheckpointStore::save_result(const std::string& result_key, const std::string& text) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    results_[hash_ + "/" + result_key] = text;
 }
 
 void MemoryCheckpointStore::save_file(const std::string& relative_path, const std::string& text) {

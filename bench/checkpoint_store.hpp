@@ -33,6 +33,11 @@ class CheckpointStore {
     virtual std::optional<std::string> load_bed(const std::string& bed_key) = 0;
     virtual void save_bed(const std::string& bed_key, const std::string& text) = 0;
 
+    /// A finished unit of work that is not a sweep (a characterisation run: one grid point on
+    /// one filling), as its result text, by key.
+    virtual std::optional<std::string> load_result(const std::string& result_key) = 0;
+    virtual void save_result(const std::string& result_key, const std::string& text) = 0;
+
     /// A file a point produces (a series, a bed snapshot), by its path relative to the
     /// recording directory ("series/H-0_1g_3.csv").
     virtual void save_file(const std::string& relative_path, const std::string& text) = 0;
@@ -41,12 +46,16 @@ class CheckpointStore {
     [[nodiscard]] virtual std::string checkpoint_name(const std::string& sweep_key) const {
         return sweep_key;
     }
+    /// How messages name a stored result (its file, for a file store).
+    [[nodiscard]] virtual std::string result_name(const std::string& result_key) const {
+        return result_key;
+    }
 };
 
-/// Checkpoints in DIR/checkpoints/<sweep>.txt, beds in DIR/settled/<bed>_<hash>.csv, files
-/// under DIR: the recording directory the CLI writes. Every file goes through a rename, so a
-/// kill never leaves half of one; a file that cannot be written throws sb::FileWriteError
-/// naming it, and the files written before stay as they were.
+/// Checkpoints in DIR/checkpoints/<sweep>.txt, beds in DIR/settled/<bed>_<hash>.csv, results
+/// in DIR/results/<key>_<hash>.txt, files under DIR: the recording directory the CLI writes. Every
+/// file goes through a rename, so a kill never leaves half of one; a file that cannot be written
+/// throws sb::FileWriteError naming it, and the files written before stay as they were.
 class FileCheckpointStore : public CheckpointStore {
   public:
     explicit FileCheckpointStore(std::filesystem::path directory);
@@ -54,13 +63,16 @@ class FileCheckpointStore : public CheckpointStore {
     /// file named, nothing simulated) a checkpoint that is damaged (bench::CheckpointError:
     /// cut short, corrupted, of another format); throws sb::FileWriteError when DIR/checkpoints
     /// cannot be written; removes the FILE.partial files a killed run left in checkpoints/,
-    /// settled/, series/ and vtk/.
+    /// settled/, results/, series/ and vtk/.
     void open(const std::string& config_hash, bool restart) override;
     [[nodiscard]] std::string checkpoint_name(const std::string& sweep_key) const override;
+    [[nodiscard]] std::string result_name(const std::string& result_key) const override;
     std::optional<std::string> load_checkpoint(const std::string& sweep_key) override;
     void save_checkpoint(const std::string& sweep_key, const std::string& text) override;
     std::optional<std::string> load_bed(const std::string& bed_key) override;
     void save_bed(const std::string& bed_key, const std::string& text) override;
+    std::optional<std::string> load_result(const std::string& result_key) override;
+    void save_result(const std::string& result_key, const std::string& text) override;
     void save_file(const std::string& relative_path, const std::string& text) override;
     [[nodiscard]] const std::filesystem::path& directory() const { return directory_; }
 
@@ -80,6 +92,8 @@ class MemoryCheckpointStore : public CheckpointStore {
     void save_checkpoint(const std::string& sweep_key, const std::string& text) override;
     std::optional<std::string> load_bed(const std::string& bed_key) override;
     void save_bed(const std::string& bed_key, const std::string& text) override;
+    std::optional<std::string> load_result(const std::string& result_key) override;
+    void save_result(const std::string& result_key, const std::string& text) override;
     void save_file(const std::string& relative_path, const std::string& text) override;
     /// The files the points produced, by relative path.
     [[nodiscard]] std::map<std::string, std::string> files() const;
@@ -89,6 +103,7 @@ class MemoryCheckpointStore : public CheckpointStore {
     std::string hash_;
     std::map<std::string, std::string> checkpoints_;
     std::map<std::string, std::string> beds_;
+    std::map<std::string, std::string> results_;
     std::map<std::string, std::string> files_;
 };
 
@@ -100,6 +115,8 @@ class NoCheckpointStore : public CheckpointStore {
     void save_checkpoint(const std::string&, const std::string&) override {}
     std::optional<std::string> load_bed(const std::string&) override { return {}; }
     void save_bed(const std::string&, const std::string&) override {}
+    std::optional<std::string> load_result(const std::string&) override { return {}; }
+    void save_result(const std::string&, const std::string&) override {}
     void save_file(const std::string&, const std::string&) override {}
 };
 

@@ -83,6 +83,12 @@ class RemoteStore : public bench::CheckpointStore {
     void save_bed(const std::string& key, const std::string& text) override {
         link_.call(join({"save_bed", key, text}));
     }
+    std::optional<std::string> load_result(const std::string& key) override {
+        return from_optional_text(link_.call(join({"load_result", key})));
+    }
+    void save_result(const std::string& key, const std::string& text) override {
+        link_.call(join({"save_result", key, text}));
+    }
     void save_file(const std::string& path, const std::string& text) override {
         link_.call(join({"save_file", path, text}));
     }
@@ -129,12 +135,16 @@ std::string serve_sweep_request(const std::string& request, const bench::Campaig
     };
     if (op == "load_checkpoint") return optional_text(store.load_checkpoint(split(request, 2)[1]));
     if (op == "load_bed") return optional_text(store.load_bed(split(request, 2)[1]));
+    if (op == "load_result") return optional_text(store.load_result(split(request, 2)[1]));
     if (op == "save_checkpoint") {
         const auto f = split(request, 3);
         store.save_checkpoint(f[1], f[2]);
     } else if (op == "save_bed") {
         const auto f = split(request, 3);
         store.save_bed(f[1], f[2]);
+    } else if (op == "save_result") {
+        const auto f = split(request, 3);
+        store.save_result(f[1], f[2]);
     } else if (op == "save_file") {
         const auto f = split(request, 3);
         store.save_file(f[1], f[2]);

@@ -55,7 +55,9 @@ void DistributedRounds::finish() {
     while (!transport_->flush()) std::this_thread::sleep_for(kWait);
 }
 
-std::vector<std::string> DistributedRounds::run(const std::vector<std::string>& inputs) {
+std::vector<std::string> DistributedRounds::run(
+    const std::vector<std::string>& inputs,
+    const std::function<void(std::size_t input, const std::string& result)>& on_result) {
     if (finished_) throw std::logic_error("DistributedRounds::run after finish");
     if (inputs.empty()) return {};
     if (transport_ != nullptr) {
@@ -70,6 +72,11 @@ std::vector<std::string> DistributedRounds::run(const std::vector<std::string>& 
         }
         return inputs[static_cast<std::size_t>(task)];
     };
+    if (on_result) {
+        queue.finished = [&on_result](int task, const TaskOutcome& outcome) {
+            if (outcome.ok) on_result(static_cast<std::size_t>(task), outcome.text);
+        };
+    }
     const auto outcomes = distribute_tasks(transport_, queue);
     std::vector<std::string> results;
     results.reserve(outcomes.size());

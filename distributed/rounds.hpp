@@ -30,7 +30,11 @@ class DistributedRounds {
 
     /// One round: every input evaluated on whichever rank is free, the results in input
     /// order. Throws std::runtime_error with an evaluation's message when one failed.
-    std::vector<std::string> run(const std::vector<std::string>& inputs);
+    /// `on_result`, if given, gets each successful result as it arrives (input index, text),
+    /// so that a caller can keep finished work of a round that later fails or is killed.
+    std::vector<std::string> run(
+        const std::vector<std::string>& inputs,
+        const std::function<void(std::size_t input, const std::string& result)>& on_result = {});
     /// Tells the other ranks that there are no more rounds.
     void finish();
     /// Evaluations each rank ran so far (index: rank).

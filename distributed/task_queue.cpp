@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstring>
 #include <deque>
+#include <exception>
 #include <mutex>
 #include <stdexcept>
 #include <thread>
@@ -270,6 +271,7 @@ std::vector<TaskOutcome> distribute_tasks(Transport* transport, const TaskQueue&
     std::vector<TaskOutcome> outcomes(static_cast<std::size_t>(count));
     int next = 0;
     int finished = 0;
+    std::exception_ptr finished_error;  // of queue.finished: the tasks running end first
     {
         Pool pool(queue, true);
         const auto record = [&](int task, TaskOutcome outcome, int rank) {
@@ -279,6 +281,13 @@ std::vector<TaskOutcome> distribute_tasks(Transport* transport, const TaskQueue&
             outcome.rank = rank;
             outcomes[static_cast<std::size_t>(task)] = std::move(outcome);
             ++finished;
+            if (queue.finished && !finished_error) {
+                try {
+                    queue.finished(task, outcomes[static_cast<std::size_t>(task)]);
+                } catch (...) {
+                    finished_error = std::current_exception();
+                }
+            }
         };
         while (finished < count) {
             bool busy = false;
@@ -329,6 +338,7 @@ std::vector<TaskOutcome> distribute_tasks(Transport* transport, const TaskQueue&
         }
     }
     if (transport != nullptr) stop_ranks(*transport);
+    if (finished_error) std::rethrow_exception(finished_error);
     return outcomes;
 }
 

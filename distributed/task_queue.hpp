@@ -25,6 +25,13 @@ class Link {
     virtual void post(const std::string& notice) = 0;
 };
 
+/// How a task ended, on rank 0.
+struct TaskOutcome {
+    bool ok = false;
+    std::string text;  ///< the result, or the failure's message
+    int rank = 0;      ///< the rank that ran it
+};
+
 /// The tasks 0 ... task_count - 1 and what to do with them. Every rank builds the same queue
 /// (the same task numbers mean the same tasks on every rank).
 struct TaskQueue {
@@ -36,13 +43,10 @@ struct TaskQueue {
     /// Rank 0 only: answers a call or takes a notice of a running task (of any rank). Called
     /// from several threads at once.
     std::function<std::string(const std::string& request)> serve;
-};
-
-/// How a task ended, on rank 0.
-struct TaskOutcome {
-    bool ok = false;
-    std::string text;  ///< the result, or the failure's message
-    int rank = 0;      ///< the rank that ran it
+    /// Rank 0 only, may be empty: told of each task's outcome as it arrives, on the thread
+    /// that gathers them (a store keeps finished work before the other tasks end). An
+    /// exception it throws is rethrown by distribute_tasks once every task has ended.
+    std::function<void(int task, const TaskOutcome& outcome)> finished;
 };
 
 /// Rank 0 (or a process alone, transport null): runs the queue over every rank, its own

@@ -32,8 +32,11 @@ namespace {
 using namespace sb::test;
 namespace fs = std::filesystem;
 
-/// `shakerbench run CONFIG --out OUT -j 1 -q` in the background, its output to `log`.
-pid_t start_run(const fs::path& config, const fs::path& out, const fs::path& log) {
+/// `shakerbench ARGUMENTS` in the background, its output to `log`.
+pid_t start_in_background(const std::vector<std::string>& arguments, const fs::path& log) {
+    std::vector<char*> argv{const_cast<char*>(SB_CLI)};
+    for (const auto& a : arguments) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
     const pid_t child = fork();
     if (child == 0) {
         const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -41,11 +44,16 @@ pid_t start_run(const fs::path& config, const fs::path& out, const fs::path& log
             dup2(fd, STDOUT_FILENO);
             dup2(fd, STDERR_FILENO);
         }
-        execl(SB_CLI, SB_CLI, "run", config.c_str(), "--out", out.c_str(), "-j", "1", "-q",
-              static_cast<char*>(nullptr));
+        execv(SB_CLI, argv.data());
         _exit(127);
     }
     return child;
+}
+
+/// `shakerbench run CONFIG --out OUT -j 1 -q` in the background, its output to `log`.
+pid_t start_run(const fs::path& config, const fs::path& out, const fs::path& log) {
+    return start_in_background({"run", config.string(), "--out", out.string(), "-j", "1", "-q"},
+                               log);
 }
 
 /// Like start_run, its output to the pipe `*output` reads instead of a file (a file could not
@@ -260,6 +268,81 @@ TEST(CliFaults, TwentyHardKillsAtRandomMomentsThenARunToTheEndGiveTheUninterrupt
     const auto again = run("run " + config.string() + " --out " + resumed.string() + " -j 1 -q");
     ASSERT_EQ(again.exit_code, 0) << again.output;
     expect_same_recording(whole, resumed);
+}
+
+/// `shakerbench characterize` of the golden bed (two levels, two frequencies, two fillings,
+/// short runs, one thread) into `out`: its arguments.
+std::vector<std::string> characterization_arguments(const fs::path& out) {
+    return {"characterize",
+            std::string(SB_SOURCE_DIR) + "/tests/bench/golden/small-h0.toml",
+            "--out",
+            out.string(),
+            "--levels-g",
+            "0.5,1",
+            "--frequency-count",
+            "2",
+            "--seeds",
+            "2",
+            "--max-periods",
+            "12",
+            "--window-periods",
+            "3",
+            "--transient-periods",
+            "1",
+            "-j",
+            "1",
+            "-q"};
+}
+
+std::size_t stored_runs(const fs::path& out) {
+    std::error_code error;
+    std::size_t count = 0;
+    for (auto it = fs::directory_iterator(out / "results", error);
+         !error && it != fs::directory_iterator(); it.increment(error)) {
+        count += it->path().extension() == ".txt" ? 1 : 0;
+    }
+    return count;
+}
+
+TEST(CliFaults, AKilledCharacterisationResumesItsFinishedRunsToTheUninterruptedTable) {
+    const auto dir = temp_dir("characterize-kills-" + std::to_string(getpid()));
+    const auto whole = dir / "whole";
+    const auto started = std::chrono::steady_clock::now();
+    const pid_t first = start_in_background(characterization_arguments(whole), dir / "whole.log");
+    ASSERT_GT(first, 0);
+    int status = 0;
+    waitpid(first, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << file_text(dir / "whole.log");
+    const double whole_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    ASSERT_EQ(stored_runs(whole), 8u);
+
+    // Killed at random moments of its second half until some runs, not all, are stored:
+    // what a kill leaves is resumed, never rerun, and the table is the uninterrupted one.
+    const auto resumed = dir / "resumed";
+    std::mt19937 random(23);
+    std::uniform_real_distribution<double> fraction(0.3, 0.95);
+    std::size_t kept = 0;
+    for (int k = 0; k < 10 && (kept == 0 || kept == 8); ++k) {
+        fs::remove_all(resumed);
+        const pid_t child =
+            start_in_background(characterization_arguments(resumed), dir / "kill.log");
+        ASSERT_GT(child, 0);
+        std::this_thread::sleep_for(std::chrono::duration<double>(fraction(random) * whole_s));
+        kill(child, SIGKILL);
+        waitpid(child, &status, 0);
+        kept = stored_runs(resumed);
+    }
+    ASSERT_GT(kept, 0u) << "no kill landed after the first run";
+    ASSERT_LT(kept, 8u) << "no kill landed before the last run";
+    std::string command;
+    for (const auto& a : characterization_arguments(resumed)) command += a + " ";
+    const auto again = run(command);
+    ASSERT_EQ(again.exit_code, 0) << again.output;
+    EXPECT_NE(again.output.find(std::to_string(kept) + " of them taken from the store"),
+              std::string::npos)
+        << again.output;
+    EXPECT_EQ(characterization_without_command(resumed), characterization_without_command(whole));
 }
 
 TEST(CliFaults, AFullDiskStopsTheRunNamingTheFileAndARunWithSpaceResumesToTheSameFiles) {

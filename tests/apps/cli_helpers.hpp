@@ -52,4 +52,18 @@ inline std::string file_text(const std::filesystem::path& file) {
     return text.str();
 }
 
+/// A characterisation file's text without its command line (it names the output folder).
+inline std::string without_command(const std::string& text) {
+    std::istringstream in(text);
+    std::string kept;
+    for (std::string line; std::getline(in, line);) {
+        if (line.rfind("# command = ", 0) != 0) kept += line + "\n";
+    }
+    return kept;
+}
+
+inline std::string characterization_without_command(const std::filesystem::path& dir) {
+    return without_command(file_text(dir / "characterization.csv"));
+}
+
 }  // namespace sb::test

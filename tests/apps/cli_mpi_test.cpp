@@ -285,20 +285,6 @@ TEST(CliMpi, TwoRanksShareTheSweepsAndDriftEvaluationsOfADiagnosisAndSayWhatOneP
     EXPECT_NE(diagnosis_results(two).find("[[drift]]"), std::string::npos);
 }
 
-/// A characterisation file's text without its command line (it names the output folder).
-std::string without_command(const std::string& text) {
-    std::istringstream in(text);
-    std::string kept;
-    for (std::string line; std::getline(in, line);) {
-        if (line.rfind("# command = ", 0) != 0) kept += line + "\n";
-    }
-    return kept;
-}
-
-std::string characterization_without_command(const fs::path& dir) {
-    return without_command(file_text(dir / "characterization.csv"));
-}
-
 TEST(CliMpi, TwoRanksShareACharacterisationsRunsAndWriteTheTableOfOneProcess) {
     const auto dir = temp_dir("mpi-characterize-" + std::to_string(getpid()));
     // The golden 30-particle bed: two frequencies and two fillings at one level, short runs.
@@ -324,6 +310,23 @@ TEST(CliMpi, TwoRanksShareACharacterisationsRunsAndWriteTheTableOfOneProcess) {
         EXPECT_EQ(without_command(file_text(one / name)), without_command(file_text(two / name)))
             << name;
     }
+
+    // Rank 0 kept each run as it came in: with two of the four forgotten, the ranks run those
+    // two only, and the table is the same.
+    std::vector<fs::path> stored;
+    for (const auto& entry : fs::directory_iterator(two / "results"))
+        stored.push_back(entry.path());
+    ASSERT_EQ(stored.size(), 4u);
+    std::sort(stored.begin(), stored.end());
+    fs::remove(stored[0]);
+    fs::remove(stored[3]);
+    const auto again = run_command(mpirun(2) + characterize + " --out " + two.string() + " 2>&1");
+    ASSERT_EQ(again.exit_code, 0) << again.output;
+    ASSERT_TRUE(std::regex_search(again.output, match, per_rank)) << again.output;
+    EXPECT_EQ(std::stoi(match[1]) + std::stoi(match[2]), 2) << again.output;
+    EXPECT_NE(again.output.find("2 of them taken from the store"), std::string::npos)
+        << again.output;
+    EXPECT_EQ(characterization_without_command(one), characterization_without_command(two));
 }
 
 }  // namespace

@@ -125,13 +125,21 @@ TEST(CliPredict, ADescribingFunctionNeedsItsFileAndTheFileItsDamper) {
         << wrong.output;
 }
 
-TEST(CliPredict, CharacterizeRefusesALevelBelowZeroAndAnUnknownRotation) {
+TEST(CliPredict, CharacterizeRefusesALevelBelowZeroALevelTwiceAndAnUnknownRotation) {
     const auto dir = temp_dir("characterize-bad-" + std::to_string(getpid()));
     const auto config = write_config(dir).string();
     const auto level =
         run("characterize " + config + " --levels-g 1,-1 --out " + (dir / "c").string());
     EXPECT_EQ(level.exit_code, 2) << level.output;
     EXPECT_NE(level.output.find("levels_g = -1: must be > 0"), std::string::npos) << level.output;
+    EXPECT_FALSE(fs::exists(dir / "c"));
+    // A level or frequency given twice would be averaged as twice the fillings.
+    const auto twice = run("characterize " + config + " --levels-g 1,2 --levels-g 2" +
+                           " --frequencies-hz 6,6.5,6 --out " + (dir / "c").string());
+    EXPECT_EQ(twice.exit_code, 2) << twice.output;
+    EXPECT_NE(twice.output.find("levels_g = 2: is given twice"), std::string::npos) << twice.output;
+    EXPECT_NE(twice.output.find("frequencies_hz = 6: is given twice"), std::string::npos)
+        << twice.output;
     EXPECT_FALSE(fs::exists(dir / "c"));
     const auto rotation = run("characterize " + config + " --rotation sideways");
     EXPECT_EQ(rotation.exit_code, 2) << rotation.output;

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -193,7 +194,8 @@ TEST(CharacterizationEnergy, ARunsEnergyReadsBackExactlyFromAnotherProcess) {
     const CharacterizeResult local = characterize(config, options);
     CharacterizationWorker worker(config, options);
     CharacterizeOptions remote = options;
-    remote.remote = [&worker](const std::vector<std::string>& numbers) {
+    remote.remote = [&worker](const std::vector<std::string>& numbers,
+                              const std::function<void(std::size_t, const std::string&)>&) {
         std::vector<std::string> texts;
         for (const auto& n : numbers) texts.push_back(worker.run(n));
         return texts;

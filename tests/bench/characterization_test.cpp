@@ -4,14 +4,20 @@
 #include "bench/characterization.hpp"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <complex>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "bench/campaign_config.hpp"
 #include "bench/campaign_plan.hpp"
+#include "bench/checkpoint_store.hpp"
 #include "campaign_fixtures.hpp"
+#include "config/errors.hpp"
+#include "core/text_file.hpp"
 #include "core/units.hpp"
 #include "dem/setup.hpp"
 #include "tests/support/enclosure_setups.hpp"
@@ -201,6 +207,110 @@ TEST(Characterization, TheTableIsTheSameOnOneAndTwoThreads) {
     EXPECT_EQ(one.table.rows.size(), 2u);
     EXPECT_EQ(characterization_csv_text(one.table), characterization_csv_text(two.table));
     EXPECT_EQ(one.table.rows.front().seeds, 2);
+}
+
+/// The 30-sphere H-0 bed at 1 and 2 g: a characterisation cheap enough to run four times.
+CampaignConfig small_h0_bed(const std::string& name) {
+    const std::string text = test::paper000_h0_with({
+        {"count = 120", "count = 30"},
+        {"max_overlap_fraction", "max_overlap_fraction = 0.05"},
+        {"levels_g", "levels_g = [1.0, 2.0]"},
+    });
+    return load_campaign_config_text(text, name);
+}
+
+TEST(Characterization, AnExtendedCharacterisationRunsOnlyWhatTheStoreDoesNotHold) {
+    // The 2 g runs first, then 1 and 2 g with the same store: the second call takes the 2 g
+    // runs and the beds from the store and runs the 1 g ones, and its table is the one a
+    // single call over both levels gives. A third call simulates nothing.
+    const auto config = small_h0_bed("extended.toml");
+    CharacterizeOptions options = sb::test::short_characterization(2, 3, 8);
+    const auto whole = characterize(config, options);
+    ASSERT_EQ(whole.runs, 8);
+    EXPECT_EQ(whole.resumed_runs, 0);
+    // One stiffness for the campaign (sized for 2 g): both levels shake the same two beds.
+    EXPECT_EQ(whole.beds_settled, 2);
+
+    MemoryCheckpointStore store;
+    options.store = &store;
+    CharacterizeOptions first = options;
+    first.levels_g = {2.0};
+    const auto part = characterize(config, first);
+    EXPECT_EQ(part.runs, 4);
+    EXPECT_EQ(part.resumed_runs, 0);
+    EXPECT_EQ(part.beds_settled, 2);
+
+    const auto extended = characterize(config, options);
+    EXPECT_EQ(extended.runs, 8);
+    EXPECT_EQ(extended.resumed_runs, 4);
+    EXPECT_EQ(extended.beds_settled, 0);
+    EXPECT_EQ(characterization_csv_text(extended.table), characterization_csv_text(whole.table));
+
+    const auto again = characterize(config, options);
+    EXPECT_EQ(again.resumed_runs, 8);
+    EXPECT_EQ(again.beds_settled, 0);
+    EXPECT_EQ(characterization_csv_text(again.table), characterization_csv_text(whole.table));
+
+    // Another criterion is another run: nothing of the store is taken for it.
+    CharacterizeOptions longer = options;
+    longer.levels_g = {2.0};
+    longer.steady.max_periods = 9;
+    const auto other = characterize(config, longer);
+    EXPECT_EQ(other.resumed_runs, 0);
+    EXPECT_EQ(other.beds_settled, 0);  // the beds do not depend on the criterion
+    // With a stiffness per level (the campaign's other choice) each level has its own beds.
+    CampaignConfig per_level = config;
+    apply_overrides(per_level, {"dampers.pd.contact.stiffness_for=level"});
+    MemoryCheckpointStore per_level_store;
+    CharacterizeOptions both = options;
+    both.store = &per_level_store;
+    EXPECT_EQ(characterize(per_level, both).beds_settled, 4);  // two fillings at two stiffnesses
+    // With restart the store forgets this config's runs and beds.
+    options.restart = true;
+    const auto restarted = characterize(config, options);
+    EXPECT_EQ(restarted.resumed_runs, 0);
+    EXPECT_EQ(restarted.beds_settled, 2);
+    EXPECT_EQ(characterization_csv_text(restarted.table), characterization_csv_text(whole.table));
+}
+
+TEST(Characterization, ADamagedStoredRunIsRefusedNamingItsFile) {
+    namespace fs = std::filesystem;
+    const fs::path dir =
+        fs::temp_directory_path() / ("shakerbench-char-store-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    const auto config = small_h0_bed("damaged.toml");
+    CharacterizeOptions options = sb::test::short_characterization(1, 3, 7);
+    options.levels_g = {2.0};
+    options.seeds = 1;
+    FileCheckpointStore store(dir);
+    options.store = &store;
+    const auto first = characterize(config, options);
+    ASSERT_EQ(first.runs, 1);
+    std::vector<fs::path> results;
+    for (const auto& entry : fs::directory_iterator(dir / "results")) {
+        results.push_back(entry.path());
+    }
+    ASSERT_EQ(results.size(), 1u);
+    const auto resumed = characterize(config, options);
+    EXPECT_EQ(resumed.resumed_runs, 1);
+    EXPECT_EQ(characterization_csv_text(resumed.table), characterization_csv_text(first.table));
+
+    std::string text = read_text_file(results.front());
+    text[text.size() / 3] = text[text.size() / 3] == '1' ? '2' : '1';  // one byte changed
+    std::ofstream(results.front(), std::ios::binary) << text;
+    try {
+        (void)characterize(config, options);
+        ADD_FAILURE() << "a damaged stored run was resumed";
+    } catch (const config::ConfigException& e) {
+        ASSERT_EQ(e.errors().size(), 1u) << e.what();
+        EXPECT_EQ(e.errors().front().file, results.front().string());
+        EXPECT_NE(e.errors().front().constraint.find("checksum"), std::string::npos) << e.what();
+    }
+    options.restart = true;
+    const auto redone = characterize(config, options);
+    EXPECT_EQ(redone.resumed_runs, 0);
+    EXPECT_EQ(characterization_csv_text(redone.table), characterization_csv_text(first.table));
+    fs::remove_all(dir);
 }
 
 }  // namespace

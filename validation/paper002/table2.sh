@@ -16,7 +16,8 @@
 # filling (its side walls carry a share of the loss that a part of it would exaggerate); with
 # the grid a quarter of the footprint at full height (its cells' walls are the grid's), two
 # fillings, stands for the whole with --scale 4 (docs/characterisation.md). Characterisations
-# already in OUT are kept, so an interrupted run resumes. Prints one row per damper and fill:
+# already in OUT are kept, and an interrupted one resumes from the runs it finished
+# (OUT/KEY/results); the four levels shake the same fillings (one stiffness), each poured once. Prints one row per damper and fill:
 # the predicted peak, its frequency and status, the paper's peak, and their ratio.
 #
 # BEAM_DAMPING=0.02 validation/paper002/table2.sh OUT ... predicts with the beam's modal damping
