@@ -18,11 +18,11 @@
 #include "bench/attachment.hpp"
 #include "bench/characterization.hpp"
 #include "bench/resolved_config.hpp"
+#include "bench/settled_bed.hpp"
 #include "bench/sweep_checkpoint.hpp"
 #include "config/errors.hpp"
 #include "config/write.hpp"
 #include "core/units.hpp"
-#include "dem/setup.hpp"
 
 namespace sb::bench {
 namespace {
@@ -31,26 +31,6 @@ std::string number_text(double v) {
     char buffer[64];
     std::snprintf(buffer, sizeof buffer, "%.6g", v);
     return buffer;
-}
-
-/// The settled bed of a damper in its mounting: the campaign's procedure (sweep_runner.cpp),
-/// so that a seed and a level give the campaign's bed.
-dem::ParticleSet settled_bed(const DamperSpec& damper, double stiffness,
-                             const Eigen::Matrix3d& rotation, const Eigen::Vector3d& gravity,
-                             std::uint64_t seed) {
-    dem::SolverOptions local = damper.solver_options(stiffness);
-    local.gravity_m_s2 = rotation.transpose() * gravity;
-    local.track_energy = false;
-    local.lock = dem::LockOptions{};  // the bed settles free; a lock then holds it as it lies
-    if (damper.fill == DamperSpec::Fill::pour) return dem::pour(local, seed, damper.settle);
-    dem::ParticleSet filled;
-    try {
-        filled = dem::fill_random(local, seed);
-    } catch (const std::runtime_error& e) {
-        throw std::runtime_error("damper " + damper.name + ": " + e.what() + " (set dampers." +
-                                 damper.name + ".settle.fill = \"pour\")");
-    }
-    return dem::settle(local, filled, damper.settle);
 }
 
 double mean_of(const std::vector<double>& v) {
@@ -287,24 +267,19 @@ CharacterizationGrid plan_grid(const CampaignConfig& config, const CharacterizeO
     return grid_plan;
 }
 
-/// The settled bed of bed `b` of the grid, from the store when it holds it. Always read back
-/// from its text (17 significant digits, exact), as the campaign does: a bed settled now, one
-/// read from the store and one settled on another rank give the same numbers.
+/// The settled bed of bed `b` of the grid, by the campaign's procedure (a seed and a stiffness
+/// give the campaign's bed), from the store when it holds it; counts the beds settled here.
 dem::ParticleSet settle(const CharacterizationGrid& grid, std::size_t b, CheckpointStore* store,
                         int& settled_here) {
     const auto& bed = grid.beds[b];
-    std::optional<std::string> text;
-    if (store != nullptr) text = store->load_bed(bed.key);
-    if (!text) {
-        const PreparedArrangement& prepared = grid.plan.arrangements[bed.arrangement];
-        const DamperMounting mounting = damper_mounting(prepared.arrangement, *bed.damper);
-        text =
-            dem::particles_text(settled_bed(*bed.damper, bed.contact.stiffness, mounting.rotation,
-                                            prepared.structure.gravity_m_s2, bed.seed));
-        ++settled_here;
-        if (store != nullptr) store->save_bed(bed.key, *text);
-    }
-    return dem::parse_particles_text(*text, bed.key);
+    const PreparedArrangement& prepared = grid.plan.arrangements[bed.arrangement];
+    const DamperMounting mounting = damper_mounting(prepared.arrangement, *bed.damper);
+    bool settled = false;
+    dem::ParticleSet particles =
+        settled_bed(*bed.damper, bed.contact.stiffness, mounting.rotation,
+                    prepared.structure.gravity_m_s2, bed.seed, store, bed.key, &settled);
+    if (settled) ++settled_here;
+    return particles;
 }
 
 /// Run `r` of the grid on its settled bed.

@@ -18,13 +18,13 @@
 #include "bench/linear_estimate.hpp"
 #include "bench/physics_attachments.hpp"
 #include "bench/prediction.hpp"
+#include "bench/settled_bed.hpp"
 #include "bench/specimen_plant.hpp"
 #include "bench/sweep_checkpoint.hpp"
 #include "bench/transient_run.hpp"
 #include "control/controller.hpp"
 #include "control/fixed_drive.hpp"
 #include "core/units.hpp"
-#include "dem/setup.hpp"
 #include "identification/recording_io.hpp"
 #include "structure/frf.hpp"
 
@@ -44,38 +44,6 @@ std::string format_duration(double seconds) {
     if (s >= 60) out << (s % 3600) / 60 << "m";
     out << s % 60 << "s";
     return out.str();
-}
-
-/// The settled bed of a damper in its mounting (gravity in the enclosure frame), from the
-/// store when it holds one; always read back from its text (17 significant digits, exact), so
-/// a fresh and a resumed run start from the same numbers.
-dem::ParticleSet settled_bed(const DamperSpec& damper, double stiffness,
-                             const Eigen::Matrix3d& rotation, const Eigen::Vector3d& gravity,
-                             std::uint64_t seed, CheckpointStore& store, const std::string& key) {
-    std::optional<std::string> text = store.load_bed(key);
-    if (!text) {
-        dem::SolverOptions local = damper.solver_options(stiffness);
-        local.gravity_m_s2 = rotation.transpose() * gravity;
-        local.track_energy = false;
-        local.lock = dem::LockOptions{};  // the bed settles free; a lock then holds it as it lies
-        dem::ParticleSet settled;
-        if (damper.fill == DamperSpec::Fill::pour) {
-            settled = dem::pour(local, seed, damper.settle);
-        } else {
-            dem::ParticleSet filled;
-            try {
-                filled = dem::fill_random(local, seed);
-            } catch (const std::runtime_error& e) {
-                throw std::runtime_error("damper " + damper.name + ": " + e.what() +
-                                         " (set dampers." + damper.name +
-                                         ".settle.fill = \"pour\")");
-            }
-            settled = dem::settle(local, filled, damper.settle);
-        }
-        text = dem::particles_text(settled);
-        store.save_bed(key, *text);
-    }
-    return dem::parse_particles_text(*text, key);
 }
 
 std::string control_log_line(const SweepTask& task, const control::PointResult& r) {
@@ -277,7 +245,7 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
         dt_max = std::min(dt_max, chosen.time_step_s);
         out.settings.push_back(damper.name + ": " + chosen.log);
         const dem::ParticleSet bed =
-            settled_bed(damper, chosen.stiffness, mounting.rotation, gravity, task.seed, store,
+            settled_bed(damper, chosen.stiffness, mounting.rotation, gravity, task.seed, &store,
                         task.key + "_" + damper.name);
         dem::SolverOptions options = damper.solver_options(chosen.stiffness);
         options.gravity_m_s2 = gravity;
