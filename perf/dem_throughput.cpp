@@ -7,8 +7,11 @@
 //       gravity from a body-centred lattice, then shaken along z at 120 Hz, 10.5 g (paper
 //       002 section 4), Hooke k = 1e5 N/m, same pair properties, dt = 2 us.
 // Both enclosures move as z = A (1 - cos wt), like LAMMPS's `wiggle` and `in.damper`.
+//   (c) the damper of (a) as paper 000's campaign runs it (not a LAMMPS problem): gravity
+//       across the axis, directional Coulomb with rolling resistance, k = 4.24e5 N/m,
+//       dt = t_c/20, 2 g RMS at 6.37 Hz, the enclosure rocking by 0.04 rad with the beam.
 //
-// Usage: dem_throughput a|b [--threads N] [--warmup STEPS] [--steps STEPS] [--ledger 0|1]
+// Usage: dem_throughput a|b|c [--threads N] [--warmup STEPS] [--steps STEPS] [--ledger 0|1]
 //                           [--bed FILE] [--count N] [--write-lammps-data FILE]
 // --count (case b): N spheres, the cavity's footprint scaled by N / 5,000 (default 5,000).
 // --bed (case b): settled bed cache; read if present, else settled and written.
@@ -45,6 +48,7 @@ struct Case {
     double dt_s = 2e-6;
     long warmup_steps = 0;
     long steps = 0;
+    bool rocking = false;  ///< the enclosure turns with a beam's slope (case c)
 };
 
 Case case_a() {
@@ -61,6 +65,29 @@ Case case_a() {
     c.level_m_s2 = 3.0 * sb::kStandardGravity;
     c.warmup_steps = 200000;  // 0.4 s: past the start-up transient of the random fill
     c.steps = 300000;
+    return c;
+}
+
+/// The damper of case a as paper 000's campaign runs it (the H-0 sweep at 2 g near the first
+/// mode, docs/performance.md): gravity across the cylinder's axis, the paper's directional
+/// Coulomb law with rolling resistance, the contact sized for the campaign's 5 g (4.24e5 N/m,
+/// the automatic step t_c/20) and the enclosure rocking with the beam's slope, so that every
+/// position goes through the rotated frame as in a coupled run. Not a LAMMPS problem.
+Case case_c() {
+    Case c;
+    SolverOptions& o = c.options;
+    o.particles.count = 120;
+    o.particles.diameter_m = 3e-3;
+    o.contact.normal_stiffness = 4.243e5;
+    o.contact.particle_particle = {0.9, 0.6, 0.01};
+    o.contact.particle_wall = {0.9, 0.6, 0.01};
+    o.gravity_m_s2 = Eigen::Vector3d(-sb::kStandardGravity, 0.0, 0.0);
+    c.frequency_hz = 6.37;
+    c.level_m_s2 = 2.0 * std::sqrt(2.0) * sb::kStandardGravity;  // 2 g RMS
+    c.dt_s = 1.7917e-6;
+    c.warmup_steps = 200000;
+    c.steps = 300000;
+    c.rocking = true;
     return c;
 }
 
@@ -84,9 +111,19 @@ Case case_b(int count) {
     return c;
 }
 
-EnclosureState shaken(const Case& c, double t) {
+/// The beam's slope at the damper in case c: 0.04 rad at the tip displacement's peak.
+constexpr double kRockingAmplitudeRad = 0.04;
+
+EnclosureState shaken(const Case& c, double t, bool rocking) {
     const double w = sb::kTwoPi * c.frequency_hz, amp = c.level_m_s2 / (w * w);
-    return sb::dem::perf::axial_wiggle(t, amp, w);
+    EnclosureState e = sb::dem::perf::axial_wiggle(t, amp, w);
+    if (rocking) {  // the slope follows the displacement from its mean
+        const double theta = -kRockingAmplitudeRad * std::cos(w * t);
+        e.rotation = Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitY()).toRotationMatrix();
+        e.angular_velocity_rad_s =
+            Eigen::Vector3d(0.0, kRockingAmplitudeRad * w * std::sin(w * t), 0.0);
+    }
+    return e;
 }
 
 /// Body-centred layers (15 x 15 on the corners, 14 x 14 on the centres) with 5 um gaps, so
@@ -203,7 +240,7 @@ std::string state_hash(const Solver& s) {
 [[gnu::noinline]] double timed_steps(Solver& s, const Case& c, long& k) {
     double contacts = 0.0;
     for (long q = 0; q < c.steps; ++q, ++k) {
-        s.set_enclosure_state(shaken(c, static_cast<double>(k) * c.dt_s));
+        s.set_enclosure_state(shaken(c, static_cast<double>(k) * c.dt_s, c.rocking));
         s.step(c.dt_s);
         contacts += static_cast<double>(s.contact_count());
     }
@@ -236,7 +273,7 @@ std::string lammps_vars(const Case& c) {
 
 [[noreturn]] void usage(const std::string& why) {
     std::cerr << "dem_throughput: " << why
-              << "\nusage: dem_throughput a|b [--threads N] [--warmup STEPS] [--steps STEPS]"
+              << "\nusage: dem_throughput a|b|c [--threads N] [--warmup STEPS] [--steps STEPS]"
                  " [--ledger 0|1] [--bed FILE] [--count N (case b)] [--write-lammps-data FILE]"
                  " [--lammps-vars 1]\n";
     std::exit(2);
@@ -254,7 +291,9 @@ long parse_long(const std::string& key, const char* text) {
 int main(int argc, char** argv) {
     if (argc < 2) usage("missing case");
     const std::string name = argv[1];
-    if (name != "a" && name != "b") usage("case must be a or b, got '" + name + "'");
+    if (name != "a" && name != "b" && name != "c") {
+        usage("case must be a, b or c, got '" + name + "'");
+    }
     int count_b = 5000;
     for (int k = 2; k + 1 < argc; k += 2) {  // the case's size first: the others override it
         if (std::string(argv[k]) == "--count") {
@@ -262,8 +301,8 @@ int main(int argc, char** argv) {
         }
     }
     if (count_b < 1 || count_b > 10000000) usage("--count: expected 1 to 10000000 spheres");
-    if (name == "a" && count_b != 5000) usage("--count applies to case b only");
-    Case c = name == "a" ? case_a() : case_b(count_b);
+    if (name != "b" && count_b != 5000) usage("--count applies to case b only");
+    Case c = name == "a" ? case_a() : name == "c" ? case_c() : case_b(count_b);
     int threads = 1;
     bool ledger = false;
     std::string bed, lammps_data;
@@ -300,7 +339,7 @@ int main(int argc, char** argv) {
     }
 
     ParticleSet p;
-    if (name == "a") {
+    if (name != "b") {
         p = fill_random(c.options, 2021);
     } else if (!bed.empty() && std::filesystem::exists(bed)) {
         p = read_bed(bed);
@@ -313,10 +352,10 @@ int main(int argc, char** argv) {
         return 0;
     }
     try {
-        Solver s(c.options, p, shaken(c, 0.0));
+        Solver s(c.options, p, shaken(c, 0.0, c.rocking));
         long k = 0;
         for (; k < c.warmup_steps; ++k) {
-            s.set_enclosure_state(shaken(c, static_cast<double>(k) * c.dt_s));
+            s.set_enclosure_state(shaken(c, static_cast<double>(k) * c.dt_s, c.rocking));
             s.step(c.dt_s);
         }
         const auto t0 = std::chrono::steady_clock::now();
