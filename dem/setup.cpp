@@ -205,6 +205,21 @@ Violations SettleOptions::validate() const {
     return out;
 }
 
+double settling_step_s(const SolverOptions& options, const ParticleSet& initial,
+                       const SettleOptions& so) {
+    const ContactOptions& c = options.contact;
+    if (c.normal != NormalLaw::hooke || initial.radii_m.empty()) return so.dt_s;
+    const double r = *std::min_element(initial.radii_m.begin(), initial.radii_m.end());
+    const double m = options.particles.material.density_kg_m3 * 4.0 / 3.0 * kPi * r * r * r;
+    const double k_wall =
+        c.wall_normal_stiffness > 0.0 ? c.wall_normal_stiffness : c.normal_stiffness;
+    // Undamped half periods (the damped ones are longer): two of the smallest spheres
+    // (m* = m/2) and one against a wall (m* = m).
+    const double contact_time =
+        std::min(kPi * std::sqrt(0.5 * m / c.normal_stiffness), kPi * std::sqrt(m / k_wall));
+    return std::min(so.dt_s, contact_time / kSettleStepsPerContact);
+}
+
 ParticleSet settle(const SolverOptions& options, const ParticleSet& initial,
                    const SettleOptions& so) {
     if (const Violations v = so.validate(); !v.empty()) {
@@ -218,11 +233,12 @@ ParticleSet settle(const SolverOptions& options, const ParticleSet& initial,
         o.contact.tangential = TangentialLaw::coulomb_spring;
     }
     Solver solver(o, initial);
-    const auto steps = static_cast<std::int64_t>(std::ceil(so.max_time_s / so.dt_s));
-    const auto min_steps = static_cast<std::int64_t>(std::ceil(so.min_time_s / so.dt_s));
+    const double dt = settling_step_s(o, initial, so);
+    const auto steps = static_cast<std::int64_t>(std::ceil(so.max_time_s / dt));
+    const auto min_steps = static_cast<std::int64_t>(std::ceil(so.min_time_s / dt));
     int quiet = 0;
     for (std::int64_t k = 0; k < steps; ++k) {
-        solver.step(so.dt_s);
+        solver.step(dt);
         if (k >= min_steps && k % kSettleCheckInterval == 0) {
             // a bouncing bed passes through low kinetic energy at its turning points: demand
             // several consecutive quiet checks

@@ -3,11 +3,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
 
+#include "core/units.hpp"
 #include "dem/solver.hpp"
 #include "test_helpers.hpp"
 
@@ -226,6 +228,59 @@ TEST(Settle, SettledStateIsAtRestAndLoadable) {
         ASSERT_EQ(from_memory.particles().w[i], from_file.particles().w[i]) << i;
     }
     EXPECT_EQ(from_memory.wall_force(), from_file.wall_force());
+}
+
+/// Paper 000's bed (120 steel spheres of 3 mm in the 19 x 25 mm cylinder) on contacts of
+/// 1.7e6 N/m (four times its stiffness for 5 g): the pair contact lasts 1.8e-5 s, 1.8 steps
+/// of 1e-5 s.
+SolverOptions stiff_bed_options() {
+    SolverOptions o;
+    o.particles.count = 120;
+    o.contact.normal_stiffness = 1.7e6;
+    o.contact.tangential = TangentialLaw::coulomb_spring;
+    return o;
+}
+
+double sphere_mass_kg(const SolverOptions& o) {
+    const double d = o.particles.diameter_m;
+    return o.particles.material.density_kg_m3 * kPi / 6.0 * d * d * d;
+}
+
+TEST(Settle, StiffHookeContactsSettleAtAThreeAndAHalfthOfTheShortestContact) {
+    SolverOptions o = stiff_bed_options();
+    const ParticleSet bed = fill_random(o, 3);
+    SettleOptions so;
+    so.dt_s = 1e-5;
+    const double m = sphere_mass_kg(o);
+    // two spheres (m* = m/2) on k: the undamped half period
+    const double pair = kPi * std::sqrt(0.5 * m / o.contact.normal_stiffness);
+    EXPECT_NEAR(settling_step_s(o, bed, so), pair / 3.5, 1e-12 * pair);
+    // a wall four times stiffer: m* = m on 4k, 1/sqrt(2) of the pair's
+    o.contact.wall_normal_stiffness = 4.0 * o.contact.normal_stiffness;
+    EXPECT_NEAR(settling_step_s(o, bed, so), pair / std::sqrt(2.0) / 3.5, 1e-12 * pair);
+    // a softer contact keeps the given step; so do Hertz contacts
+    o = settle_options_for_test();  // 1e4 N/m: the pair contact lasts 1.7e-4 s
+    EXPECT_EQ(settling_step_s(o, bed, so), so.dt_s);
+    o = stiff_bed_options();
+    o.contact.normal = NormalLaw::hertz;
+    EXPECT_EQ(settling_step_s(o, bed, so), so.dt_s);
+}
+
+TEST(Settle, AStiffBedSettlesWhereTheGivenStepWouldBlowUp) {
+    const SolverOptions o = stiff_bed_options();
+    const ParticleSet filled = fill_random(o, 3);
+    SettleOptions so;
+    so.dt_s = 1e-5;
+    // at the given step the first contacts gain energy until the overlap guard stops the run
+    EXPECT_THROW(
+        {
+            Solver raw(o, filled);
+            for (int k = 0; k < 50000; ++k) raw.step(so.dt_s);
+        },
+        SimulationError);
+    const ParticleSet settled = settle(o, filled, so);
+    Solver rest(o, settled);
+    EXPECT_LT(rest.energy().kinetic_translational, so.kinetic_threshold_j);
 }
 
 /// A box of 7 x 7 x 6 diameters and 250 spheres of 2 mm: 0.445 of the cavity, beyond what
