@@ -32,9 +32,11 @@ void FileCheckpointStore::open(const std::string& config_hash, bool restart) {
     // runs, every file at once.
     const fs::path dir = directory_ / "checkpoints";
     std::vector<fs::path> files;
-    for (const auto& entry : fs::directory_iterator(dir)) {
-        if (entry.is_regular_file() && entry.path().extension() == ".txt") {
-            files.push_back(entry.path());
+    std::error_code error;  // no folder: no checkpoint yet
+    for (auto it = fs::directory_iterator(dir, error); !error && it != fs::directory_iterator();
+         it.increment(error)) {
+        if (it->is_regular_file() && it->path().extension() == ".txt") {
+            files.push_back(it->path());
         }
     }
     std::sort(files.begin(), files.end());
@@ -72,6 +74,8 @@ void FileCheckpointStore::check_writable() const {
     // A directory that cannot take a checkpoint is refused before anything is simulated,
     // rather than after the first point.
     const fs::path dir = directory_ / "checkpoints";
+    std::error_code ignored;
+    const bool existed = fs::exists(dir, ignored);
     create_directories_for_writing(dir);
     const fs::path probe = dir / ".write-probe";
     try {
@@ -79,8 +83,10 @@ void FileCheckpointStore::check_writable() const {
     } catch (const FileWriteError& e) {
         throw FileWriteError(dir, e.reason());
     }
-    std::error_code ignored;
     fs::remove(probe, ignored);
+    // A folder made only for the probe goes again (a characterisation keeps no sweep
+    // checkpoints); the first save makes it again when needed.
+    if (!existed) fs::remove(dir, ignored);
 }
 
 void FileCheckpointStore::remove_partial_files() const {

@@ -112,6 +112,27 @@ TEST(FileCheckpointStore, AFolderThatCannotHoldCheckpointsIsRefusedBeforeAnythin
     }
 }
 
+TEST(FileCheckpointStore, OpeningAFreshDirectoryLeavesNoEmptyFolderTheFirstSaveMakesIt) {
+    // A characterisation keeps results and beds, never sweep checkpoints: the folder the
+    // write test needed is not left behind.
+    const fs::path dir = fs::temp_directory_path() / ("store-fresh-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    FileCheckpointStore store(dir);
+    store.open(kHash, false);
+    EXPECT_TRUE(fs::is_directory(dir));
+    EXPECT_FALSE(fs::exists(dir / "checkpoints"));
+    const std::string text = checkpoint_text(kHash);
+    store.save_checkpoint("s", text);
+    EXPECT_EQ(read_text_file(dir / "checkpoints" / "s.txt"), text);
+    // a folder that was there before is kept, empty or not
+    const fs::path other = fresh_dir("kept");
+    FileCheckpointStore kept(other);
+    kept.open(kHash, false);
+    EXPECT_TRUE(fs::is_directory(other / "checkpoints"));
+    fs::remove_all(dir);
+    fs::remove_all(other);
+}
+
 TEST(FileCheckpointStore, NamesACheckpointByItsFile) {
     FileCheckpointStore store("out");
     EXPECT_EQ(store.checkpoint_name("H-0_2g"),
