@@ -47,18 +47,26 @@ function(sb_add_module name)
   add_library(sb::${name} ALIAS sb_${name})
 endfunction()
 
-# sb_add_test(NAME LABEL [SERIAL] SOURCES ... DEPENDS ...): one GoogleTest executable
-# registered with CTest, every test in it carrying LABEL (unit, validation, slow or long: runs
-# of minutes that the ci test preset leaves out). SERIAL:
+# sb_add_test(NAME LABEL [SERIAL] [BESIDE_OTHERS FILTER] SOURCES ... DEPENDS ...): one
+# GoogleTest executable registered with CTest, every test in it carrying LABEL (unit,
+# validation, slow or long: runs of minutes that the ci test preset leaves out). SERIAL:
 # the tests run alone (RUN_SERIAL) with passive OpenMP waiting, for suites that run campaigns
 # on several threads, so that ctest -j never puts two of them on the two cores and no idle
-# thread spins at a barrier.
+# thread spins at a barrier. BESIDE_OTHERS: the tests of a SERIAL suite that match the
+# GoogleTest filter run on one thread and may share the machine; being long, they are started
+# first (COST), so that the other core works through the rest meanwhile.
 function(sb_add_test name label)
-  cmake_parse_arguments(ARG "SERIAL" "" "SOURCES;DEPENDS" ${ARGN})
+  cmake_parse_arguments(ARG "SERIAL" "BESIDE_OTHERS" "SOURCES;DEPENDS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPENDS} sb_test_main sb::warnings)
   target_compile_definitions(${name} PRIVATE SB_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
-  if(ARG_SERIAL)
+  if(ARG_SERIAL AND ARG_BESIDE_OTHERS)
+    gtest_discover_tests(${name} TEST_FILTER "${ARG_BESIDE_OTHERS}" TEST_LIST ${name}_beside
+      PROPERTIES LABELS ${label} COST 1000 DISCOVERY_TIMEOUT 60)
+    gtest_discover_tests(${name} TEST_FILTER "-${ARG_BESIDE_OTHERS}" TEST_LIST ${name}_alone
+      PROPERTIES LABELS ${label} RUN_SERIAL TRUE ENVIRONMENT "OMP_WAIT_POLICY=PASSIVE"
+      DISCOVERY_TIMEOUT 60)
+  elseif(ARG_SERIAL)
     gtest_discover_tests(${name} PROPERTIES LABELS ${label} RUN_SERIAL TRUE
       ENVIRONMENT "OMP_WAIT_POLICY=PASSIVE" DISCOVERY_TIMEOUT 60)
   else()
