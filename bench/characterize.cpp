@@ -22,6 +22,7 @@
 #include "bench/sweep_checkpoint.hpp"
 #include "config/errors.hpp"
 #include "config/write.hpp"
+#include "core/exact_text.hpp"
 #include "core/units.hpp"
 
 namespace sb::bench {
@@ -96,13 +97,6 @@ struct CharacterizationGrid {
 
 namespace {
 
-/// A number as exact text (a hexadecimal float), for results passed between processes.
-std::string hex_text(double v) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%a", v);
-    return buffer;
-}
-
 /// The largest time step of the runs of `bed`: the contact's, or a 256th of the period of
 /// the grid's lowest frequency (every run of an arrangement takes the same).
 double step_limit_s(const CharacterizationGrid& grid, const CharacterizationGrid::Bed& bed) {
@@ -120,23 +114,23 @@ void assign_keys(CharacterizationGrid& grid, const CharacterizeOptions& options)
         const std::string where =
             grid.plan.arrangements[bed.arrangement].arrangement.name + "_" + bed.damper->name;
         bed.key = where + "_seed" + std::to_string(bed.seed) + "_" +
-                  config::fnv1a_hex(hex_text(bed.contact.stiffness)).substr(0, 8);
+                  config::fnv1a_hex(exact_text(bed.contact.stiffness)).substr(0, 8);
         bed.same_as = first_bed.emplace(bed.key, b).first->second;
     }
     const SteadyStateOptions& st = options.steady;
     std::ostringstream common;
-    common << st.transient_periods << ' ' << st.window_periods << ' ' << hex_text(st.tolerance)
-           << ' ' << st.max_periods << ' ' << hex_text(st.energy_tolerance) << ' '
+    common << st.transient_periods << ' ' << st.window_periods << ' ' << exact_text(st.tolerance)
+           << ' ' << st.max_periods << ' ' << exact_text(st.energy_tolerance) << ' '
            << options.energy_layers << ' ' << (options.rotation ? 1 : 0);
     for (auto& run : grid.runs) {
         const auto& bed = grid.beds[run.bed];
         const Eigen::Vector3d& turn =
             grid.rotations[bed.arrangement * grid.dampers.size() + grid.damper_index(bed.damper)];
         std::ostringstream numbers;
-        numbers << common.str() << ' ' << hex_text(bed.level_g) << ' ' << hex_text(run.frequency_hz)
-                << ' ' << hex_text(bed.contact.stiffness) << ' '
-                << hex_text(step_limit_s(grid, bed)) << ' ' << hex_text(turn.x()) << ' '
-                << hex_text(turn.y()) << ' ' << hex_text(turn.z()) << ' ' << bed.seed;
+        numbers << common.str() << ' ' << exact_text(bed.level_g) << ' '
+                << exact_text(run.frequency_hz) << ' ' << exact_text(bed.contact.stiffness) << ' '
+                << exact_text(step_limit_s(grid, bed)) << ' ' << exact_text(turn.x()) << ' '
+                << exact_text(turn.y()) << ' ' << exact_text(turn.z()) << ' ' << bed.seed;
         run.key = grid.plan.arrangements[bed.arrangement].arrangement.name + "_" +
                   bed.damper->name + "_" + number_text(bed.level_g) + "g_" +
                   number_text(run.frequency_hz) + "Hz_seed" + std::to_string(bed.seed) + "_" +
@@ -312,7 +306,7 @@ ApparentMassPoint measure(const CampaignConfig& config, const CharacterizeOption
 /// A list as its length and its values.
 void write_list(std::ostream& out, const std::vector<double>& values) {
     out << ' ' << values.size();
-    for (double v : values) out << ' ' << hex_text(v);
+    for (double v : values) out << ' ' << exact_text(v);
 }
 
 std::vector<double> read_list(std::istream& in) {
@@ -331,7 +325,7 @@ std::string point_text(const ApparentMassPoint& m) {
     std::ostringstream out;
     for (const double v : {m.apparent_mass_kg.real(), m.apparent_mass_kg.imag(), m.power_w,
                            m.h2_ratio, m.h3_ratio, m.kinetic_j, m.bed_mass_kg}) {
-        out << hex_text(v) << ' ';
+        out << exact_text(v) << ' ';
     }
     out << m.periods << ' ' << (m.settled ? 1 : 0) << ' ' << m.steps_per_period;
     if (m.energy) {
@@ -339,7 +333,7 @@ std::string point_text(const ApparentMassPoint& m) {
         out << " energy";
         for (double v : {e.normal_damping_w, e.friction_w, e.rolling_w, e.mechanical_change_w,
                          e.kinetic_lab_j, e.bin_hz})
-            out << ' ' << hex_text(v);
+            out << ' ' << exact_text(v);
         write_list(out, e.layer_power_w);
         write_list(out, e.kinetic_amplitude_j);
         write_list(out, e.dissipation_amplitude_w);

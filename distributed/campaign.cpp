@@ -13,6 +13,7 @@
 
 #include "bench/resolved_config.hpp"
 #include "bench/sweep_checkpoint.hpp"
+#include "core/exact_text.hpp"
 #include "dem/solver.hpp"
 #include "distributed/task_queue.hpp"
 
@@ -42,13 +43,6 @@ std::vector<std::string> split(const std::string& text, std::size_t count) {
     fields.push_back(text.substr(std::min(at, text.size())));
     if (fields.size() != count) throw std::runtime_error("sweep request: fields missing");
     return fields;
-}
-
-/// Exact: a hexadecimal float.
-std::string exact(double v) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%a", v);
-    return buffer;
 }
 
 double number(const std::string& text) { return std::strtod(text.c_str(), nullptr); }
@@ -102,8 +96,8 @@ class RemoteProgress : public bench::SweepProgress {
   public:
     explicit RemoteProgress(Link& link) : link_(link) {}
     void point_started(const bench::SweepTask& task, int index, double frequency_hz) override {
-        link_.post(join(
-            {"started", std::to_string(task.index), std::to_string(index), exact(frequency_hz)}));
+        link_.post(join({"started", std::to_string(task.index), std::to_string(index),
+                         exact_text(frequency_hz)}));
     }
     void points_resumed(int count) override {
         link_.post(join({"resumed", std::to_string(count)}));
@@ -113,7 +107,7 @@ class RemoteProgress : public bench::SweepProgress {
     void point_finished(const bench::SweepTask& task, double frequency_hz,
                         const control::PointResult& result) override {
         link_.post(
-            join({"finished", std::to_string(task.index), exact(frequency_hz),
+            join({"finished", std::to_string(task.index), exact_text(frequency_hz),
                   std::to_string(static_cast<int>(result.status)),
                   std::to_string(result.periods_simulated), std::to_string(result.updates)}));
     }
@@ -180,7 +174,7 @@ std::string run_sweep_task(const bench::CampaignConfig& config, const bench::Swe
                          bench::run_sweep(config, task, config_hash, store, progress));
     } catch (const dem::SimulationError& e) {
         return "E" + join({std::to_string(static_cast<int>(e.kind)), std::to_string(e.step),
-                           exact(e.time_s), std::to_string(e.particle_id), e.what()});
+                           exact_text(e.time_s), std::to_string(e.particle_id), e.what()});
     }
 }
 
