@@ -22,7 +22,9 @@ struct EnclosureState {
     Eigen::Vector3d velocity_at(const Eigen::Vector3d& x) const {
         return velocity_m_s + angular_velocity_rad_s.cross(x - position_m);
     }
-    Eigen::Vector3d to_local(const Eigen::Vector3d& x) const {
+    // to_local and rotate run per particle and per wall contact in the DEM sweep, where the
+    // compiler left them as calls (about 8 % of a step of a rocking enclosure): forced inline.
+    [[gnu::always_inline]] Eigen::Vector3d to_local(const Eigen::Vector3d& x) const {
         const Eigen::Vector3d d = x - position_m;  // R^T d, written out so that it inlines
         return {rotation.col(0).dot(d), rotation.col(1).dot(d), rotation.col(2).dot(d)};
     }
@@ -31,7 +33,7 @@ struct EnclosureState {
                rotation.col(2) * xl.z();
     }
     /// A local direction in world coordinates.
-    Eigen::Vector3d rotate(const Eigen::Vector3d& nl) const {
+    [[gnu::always_inline]] Eigen::Vector3d rotate(const Eigen::Vector3d& nl) const {
         return rotation.col(0) * nl.x() + rotation.col(1) * nl.y() + rotation.col(2) * nl.z();
     }
     /// False if any component of the pose or velocity is NaN or infinite.

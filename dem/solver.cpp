@@ -52,18 +52,6 @@ constexpr int kNoParticle = std::numeric_limits<int>::max();
 namespace {
 
 /// Threads worth using for a loop of n items (at most kMaxChunks).
-// The enclosure frame's transforms of the sweep, forced inline (EnclosureState's own are
-// calls at -O3 in the sweep, about 8 % of the step of a rocking enclosure): the same
-// arithmetic, so the same bits.
-SB_ALWAYS_INLINE Eigen::Vector3d local_of(const EnclosureState& e, const Eigen::Vector3d& x) {
-    const Eigen::Vector3d d = x - e.position_m;
-    return {e.rotation.col(0).dot(d), e.rotation.col(1).dot(d), e.rotation.col(2).dot(d)};
-}
-SB_ALWAYS_INLINE Eigen::Vector3d world_direction(const EnclosureState& e,
-                                                 const Eigen::Vector3d& nl) {
-    return e.rotation.col(0) * nl.x() + e.rotation.col(1) * nl.y() + e.rotation.col(2) * nl.z();
-}
-
 int threads_for(int nt, std::size_t n, std::size_t grain) {
     const auto k = static_cast<int>(std::min<std::size_t>(n / grain, Solver::kMaxChunks));
     return std::max(1, std::min(nt, k));
@@ -648,7 +636,7 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
     }
     // Walls and obstacles in the enclosure frame, matched by id with the previous step's for
     // the history.
-    const Eigen::Vector3d xl = rotated_ ? local_of(es, xi) : Eigen::Vector3d(xi - es.position_m);
+    const Eigen::Vector3d xl = rotated_ ? es.to_local(xi) : Eigen::Vector3d(xi - es.position_m);
     std::uint32_t count = 0;
     // A sphere deep inside is inside (deep_inside is false for a non-finite xl), so the
     // outside guard and the wall tests only run near the walls.
@@ -672,7 +660,7 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
                                ? prev_wall_hist_[base + prev]
                                : Eigen::Vector3d::Zero();
                 }
-                const Eigen::Vector3d n = rotated_ ? world_direction(es, nl) : nl;
+                const Eigen::Vector3d n = rotated_ ? es.rotate(nl) : nl;
                 ContactKinematics k;
                 k.delta = delta;
                 k.n = n;
@@ -762,7 +750,7 @@ SB_ALWAYS_INLINE void Solver::finish_particle(std::size_t i, const Accumulated& 
     // frame, so this step's enclosure frame measures the displacement since the build as
     // well as the next one's.
     const auto& es = enclosure_state_;
-    const Eigen::Vector3d xl = rotated_ ? local_of(es, x) : Eigen::Vector3d(x - es.position_m);
+    const Eigen::Vector3d xl = rotated_ ? es.to_local(x) : Eigen::Vector3d(x - es.position_m);
     loc.max_disp2 = std::max(loc.max_disp2, (xl - x_at_build_[i]).squaredNorm());
 }
 
