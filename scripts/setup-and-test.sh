@@ -4,31 +4,37 @@
 # every libFuzzer target for a short while (SB_FUZZ_SECONDS, default 20 s each).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# Each phase's heading carries the minutes and seconds since the start (docs/development.md
+# keeps CI under 30 minutes; these say where the time goes).
+phase() { printf '== [%d:%02d] %s\n' $((SECONDS / 60)) $((SECONDS % 60)) "$*"; }
 
 scripts/install-deps.sh --test
 jobs="$(nproc)"
 
-echo "== architecture: leaf modules do not include each other"
+phase "architecture: leaf modules do not include each other"
 scripts/check-architecture.sh
 
-echo "== format"
+phase "format"
 mapfile -t sources < <(git ls-files '*.cpp' '*.hpp' 2>/dev/null || find . -name '*.[ch]pp' -not -path './build/*')
 if ((${#sources[@]} > 0)); then
     clang-format --dry-run -Werror "${sources[@]}"
 fi
 
-echo "== release build with MPI (benchmarks compiled, not run), all tests (mpirun -np 2 included)"
+phase "release build with MPI (benchmarks compiled, not run)"
 cmake --preset ci >/dev/null
 cmake --build --preset ci -j "$jobs"
+phase "release tests (mpirun -np 2 included)"
 ctest --preset ci -j "$jobs"
 
-echo "== clang with AddressSanitizer + UndefinedBehaviorSanitizer: unit tests, then the libFuzzer targets"
+phase "clang build with AddressSanitizer + UndefinedBehaviorSanitizer: unit tests, then the libFuzzer targets"
 echo "   ${SB_FUZZ_SECONDS:-20} s each (docs/development.md)"
 # One build for both: the libraries carry the sanitizers and libFuzzer's coverage, the unit
 # suites and the fuzz targets link them.
 cmake --preset ci-sanitize >/dev/null
 cmake --build --preset ci-sanitize -j "$jobs"
+phase "sanitizer unit tests"
 ctest --preset ci-sanitize -j "$jobs"
+phase "libFuzzer targets"
 # One target per core at a time; each one's output goes to build/ci-sanitize/logs/TARGET.log and is
 # shown when the target finds an input that crashes, hangs or runs out of memory.
 mkdir -p build/ci-sanitize/logs
@@ -40,3 +46,4 @@ printf '%s\n' config recording uff58 matrix_market checkpoint |
              exit 255
          fi
          echo "fuzz {}: $(grep -a -m1 DONE "$log")"'
+phase "all passed"
