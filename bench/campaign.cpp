@@ -11,24 +11,19 @@
 
 #include "bench/campaign_output.hpp"
 #include "bench/resolved_config.hpp"
+#include "core/significant_text.hpp"
 
 namespace sb::bench {
 namespace {
 
 namespace id = identification;
 
-std::string number_text(double v) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%.9g", v);
-    return buffer;
-}
-
 }  // namespace
 
 /// "H-0 2 g: 2 points with status closest left out of the fits (6.301, 6.412 Hz)".
 std::string skipped_points_line(const id::LevelIdentification& level, const std::string& unit) {
     std::ostringstream out;
-    out << level.arrangement << ' ' << number_text(level.level_g) << ' ' << unit << ": "
+    out << level.arrangement << ' ' << significant_text(level.level_g) << ' ' << unit << ": "
         << level.skipped_hz.size() << " point" << (level.skipped_hz.size() == 1 ? "" : "s")
         << " with status " << id::flagged_status_text(level) << " left out of the fits (";
     for (std::size_t i = 0; i < level.skipped_hz.size(); ++i) {

@@ -1,6 +1,8 @@
 // Loading a campaign config through its declarations, and changing it by dotted path.
 #include "bench/campaign_config.hpp"
 
+#include <utility>
+
 #include "bench/config_schema.hpp"
 #include "builtin_config.hpp"
 #include "config/document.hpp"
@@ -34,6 +36,12 @@ CampaignConfig load_campaign_config_text(std::string_view text, const std::strin
 }
 
 std::string_view builtin_config_text() { return kBuiltinConfig; }
+
+config::ConfigError config_problem(const CampaignConfig& config, std::string key, std::string value,
+                                   std::string constraint, std::string meaning) {
+    return {config.source,     0, 0, std::move(key), std::move(value), std::move(constraint),
+            std::move(meaning)};
+}
 
 config::Value get_value(const CampaignConfig& config, std::string_view path) {
     return config::get(campaign_schema(), &config, path);

@@ -9,6 +9,7 @@
 
 #include "bench/campaign_spec.hpp"
 #include "bench/physics_spec.hpp"
+#include "config/errors.hpp"
 #include "config/source_map.hpp"
 #include "config/value.hpp"
 #include "structure/spec.hpp"
@@ -34,6 +35,11 @@ CampaignConfig load_campaign_config(const std::filesystem::path& path);
 
 /// The same from text in memory; `name` stands for the file in messages.
 CampaignConfig load_campaign_config_text(std::string_view text, const std::string& name);
+
+/// A problem found in the value at `key` after the config was read (by a command that plans
+/// from it, or in a file it names): reported against the config's file, without a line.
+config::ConfigError config_problem(const CampaignConfig& config, std::string key, std::string value,
+                                   std::string constraint, std::string meaning);
 
 /// The built-in default campaign (configs/paper000-h0.toml, compiled in).
 std::string_view builtin_config_text();

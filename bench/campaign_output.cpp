@@ -10,6 +10,7 @@
 #include "bench/resolved_config.hpp"
 #include "bench/transient_run.hpp"
 #include "config/value.hpp"
+#include "core/significant_text.hpp"
 #include "core/text_file.hpp"
 #include "identification/plots.hpp"
 #include "identification/recording_io.hpp"
@@ -28,12 +29,6 @@ std::string utc_now() {
     return text;
 }
 
-std::string number_text(double v) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%.9g", v);
-    return buffer;
-}
-
 void write_provenance(const CampaignConfig& config, const CampaignResult& result,
                       const RecordingDirectory& directory) {
     std::ostringstream text;
@@ -48,10 +43,10 @@ void write_provenance(const CampaignConfig& config, const CampaignResult& result
     text << "command = " << config::quoted(directory.command_line) << "\n\n";
     for (const auto& sweep : result.sweeps) {
         text << "[sweeps." << config::quoted(sweep.key) << "]\n";
-        text << "first_mode_hz = " << number_text(sweep.first_mode_hz) << '\n';
+        text << "first_mode_hz = " << significant_text(sweep.first_mode_hz) << '\n';
         text << "frequencies_hz = [";
         for (std::size_t i = 0; i < sweep.frequencies_hz.size(); ++i) {
-            text << (i ? ", " : "") << number_text(sweep.frequencies_hz[i]);
+            text << (i ? ", " : "") << significant_text(sweep.frequencies_hz[i]);
         }
         text << "]\n";
         text << "settings = [";

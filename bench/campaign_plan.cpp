@@ -12,17 +12,12 @@
 #include "bench/shaker.hpp"
 #include "config/errors.hpp"
 #include "config/write.hpp"
+#include "core/significant_text.hpp"
 #include "core/units.hpp"
 #include "dem/setup.hpp"
 
 namespace sb::bench {
 namespace {
-
-std::string number_text(double v) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%.9g", v);
-    return buffer;
-}
 
 /// Depth of a settled bed (random close packing about 0.6) on the enclosure floor [m].
 double bed_depth_m(const DamperSpec& damper, double mass_kg) {
@@ -93,7 +88,7 @@ std::string sweep_key(const CampaignConfig& config, const std::string& arrangeme
                       const std::vector<double>& given_hz) {
     std::string unit = level_unit(config);
     if (unit == "m/s^2") unit = "mps2";
-    std::string key = arrangement + "_" + number_text(level_g) + unit;
+    std::string key = arrangement + "_" + significant_text(level_g) + unit;
     if (!given_hz.empty()) {
         std::string list;
         for (double f : given_hz) list += config::number_text(f) + ";";
@@ -184,12 +179,12 @@ CampaignPlan plan_campaign(const CampaignConfig& config, const Selection& select
                                        "arrangement of a selected sweep"));
         }
         if (!(s.level_g > 0.0 && std::isfinite(s.level_g))) {
-            problems.push_back(problem(config, "selection", number_text(s.level_g), "must be > 0",
-                                       "level of a selected sweep [g]"));
+            problems.push_back(problem(config, "selection", significant_text(s.level_g),
+                                       "must be > 0", "level of a selected sweep [g]"));
         }
         for (double f : s.frequencies_hz) {
             if (!(f > 0.0 && std::isfinite(f))) {
-                problems.push_back(problem(config, "selection", number_text(f), "must be > 0",
+                problems.push_back(problem(config, "selection", significant_text(f), "must be > 0",
                                            "frequency of a selected sweep [Hz]"));
             }
         }

@@ -99,11 +99,15 @@ dem::SolverOptions DamperSpec::solver_options(double normal_stiffness) const {
 dem::ExcitationContact DamperSpec::excitation_contact(double peak_acceleration_m_s2,
                                                       double frequency_hz) const {
     // An automatic step is sized from the pair contact time, whatever fraction stands in here.
-    const dem::ExcitationContact chosen = dem::choose_contact(
-        particles, enclosure, contact.normal, contact.particle_particle.restitution,
-        contact.normal_stiffness, contact.max_overlap_fraction,
-        contact.time_step_fraction.value_or(dem::kTimeStepLadder[0]), peak_acceleration_m_s2,
-        frequency_hz);
+    const double fraction = contact.time_step_fraction.value_or(dem::kTimeStepLadder[0]);
+    const dem::ExcitationContact chosen =
+        contact.stiffness_for == ContactSpec::StiffnessFor::materials
+            ? dem::materials_contact(particles, enclosure, contact.wall_material, fraction,
+                                     peak_acceleration_m_s2, frequency_hz)
+            : dem::choose_contact(particles, enclosure, contact.normal,
+                                  contact.particle_particle.restitution, contact.normal_stiffness,
+                                  contact.max_overlap_fraction, fraction, peak_acceleration_m_s2,
+                                  frequency_hz);
     if (contact.time_step_fraction) return chosen;
     return dem::with_automatic_time_step(chosen, solver_options(chosen.stiffness));
 }

@@ -102,10 +102,14 @@ struct ContactSpec {
     std::optional<double> time_step_fraction;
     /// What an automatic stiffness is sized for: the largest level of the campaign (one
     /// stiffness, one time step for every sweep, so the damping curve does not change its
-    /// numerics along the levels) or each sweep's own level.
-    enum class StiffnessFor { campaign, level };
+    /// numerics along the levels) or each sweep's own level; or, for the Hertz law, no sizing
+    /// at all: each pair's constant from the materials (dem::materials_contact, its time step
+    /// for the campaign's largest level).
+    enum class StiffnessFor { campaign, level, materials };
     static constexpr std::pair<StiffnessFor, std::string_view> kStiffnessForNames[] = {
-        {StiffnessFor::campaign, "campaign"}, {StiffnessFor::level, "level"}};
+        {StiffnessFor::campaign, "campaign"},
+        {StiffnessFor::level, "level"},
+        {StiffnessFor::materials, "materials"}};
     StiffnessFor stiffness_for = StiffnessFor::campaign;
 
     /// The particle-wall coefficients in use.

@@ -23,16 +23,11 @@
 #include "config/errors.hpp"
 #include "config/write.hpp"
 #include "core/exact_text.hpp"
+#include "core/significant_text.hpp"
 #include "core/units.hpp"
 
 namespace sb::bench {
 namespace {
-
-std::string number_text(double v) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%.6g", v);
-    return buffer;
-}
 
 double mean_of(const std::vector<double>& v) {
     double s = 0.0;
@@ -47,12 +42,6 @@ double deviation_of(const std::vector<double>& v) {
     double s = 0.0;
     for (double x : v) s += (x - m) * (x - m);
     return std::sqrt(s / static_cast<double>(v.size() - 1));
-}
-
-config::ConfigError problem(const CampaignConfig& config, std::string key, std::string value,
-                            std::string constraint, std::string meaning) {
-    return {config.source,     0, 0, std::move(key), std::move(value), std::move(constraint),
-            std::move(meaning)};
 }
 
 }  // namespace
@@ -132,9 +121,9 @@ void assign_keys(CharacterizationGrid& grid, const CharacterizeOptions& options)
                 << exact_text(step_limit_s(grid, bed)) << ' ' << exact_text(turn.x()) << ' '
                 << exact_text(turn.y()) << ' ' << exact_text(turn.z()) << ' ' << bed.seed;
         run.key = grid.plan.arrangements[bed.arrangement].arrangement.name + "_" +
-                  bed.damper->name + "_" + number_text(bed.level_g) + "g_" +
-                  number_text(run.frequency_hz) + "Hz_seed" + std::to_string(bed.seed) + "_" +
-                  config::fnv1a_hex(numbers.str());
+                  bed.damper->name + "_" + significant_text(bed.level_g, 6) + "g_" +
+                  significant_text(run.frequency_hz, 6) + "Hz_seed" + std::to_string(bed.seed) +
+                  "_" + config::fnv1a_hex(numbers.str());
     }
 }
 
@@ -149,19 +138,19 @@ CharacterizationGrid plan_grid(const CampaignConfig& config, const CharacterizeO
     }
     std::vector<config::ConfigError> problems;
     if (levels.empty()) {
-        problems.push_back(problem(config, "campaign.levels_g", "", "is required",
-                                   "levels to characterise [g] (or --levels-g)"));
+        problems.push_back(config_problem(config, "campaign.levels_g", "", "is required",
+                                          "levels to characterise [g] (or --levels-g)"));
     }
     for (double l : levels) {
         if (!(l > 0.0 && std::isfinite(l))) {
-            problems.push_back(problem(config, "levels_g", number_text(l), "must be > 0",
-                                       "level to characterise [g]"));
+            problems.push_back(config_problem(config, "levels_g", significant_text(l, 6),
+                                              "must be > 0", "level to characterise [g]"));
         }
     }
     for (double f : options.frequencies_hz) {
         if (!(f > 0.0 && std::isfinite(f))) {
-            problems.push_back(problem(config, "frequencies_hz", number_text(f), "must be > 0",
-                                       "frequency to characterise [Hz]"));
+            problems.push_back(config_problem(config, "frequencies_hz", significant_text(f, 6),
+                                              "must be > 0", "frequency to characterise [Hz]"));
         }
     }
     // A value given twice would be run twice and its row would average both runs' fillings
@@ -169,33 +158,34 @@ CharacterizationGrid plan_grid(const CampaignConfig& config, const CharacterizeO
     for (std::size_t i = 0; i < levels.size(); ++i) {
         if (std::find(levels.begin(), levels.begin() + static_cast<std::ptrdiff_t>(i), levels[i]) !=
             levels.begin() + static_cast<std::ptrdiff_t>(i)) {
-            problems.push_back(problem(config, "levels_g", number_text(levels[i]), "is given twice",
-                                       "level to characterise [g]"));
+            problems.push_back(config_problem(config, "levels_g", significant_text(levels[i], 6),
+                                              "is given twice", "level to characterise [g]"));
         }
     }
     const auto& fs = options.frequencies_hz;
     for (std::size_t i = 0; i < fs.size(); ++i) {
         if (std::find(fs.begin(), fs.begin() + static_cast<std::ptrdiff_t>(i), fs[i]) !=
             fs.begin() + static_cast<std::ptrdiff_t>(i)) {
-            problems.push_back(problem(config, "frequencies_hz", number_text(fs[i]),
-                                       "is given twice", "frequency to characterise [Hz]"));
+            problems.push_back(config_problem(config, "frequencies_hz", significant_text(fs[i], 6),
+                                              "is given twice", "frequency to characterise [Hz]"));
         }
     }
     if (dampers.empty()) {
-        problems.push_back(problem(config, "dampers", "", "needs a damper whose model is not rigid",
-                                   "the dampers to characterise"));
+        problems.push_back(config_problem(config, "dampers", "",
+                                          "needs a damper whose model is not rigid",
+                                          "the dampers to characterise"));
     }
     if (options.seeds < 1) {
-        problems.push_back(problem(config, "seeds", std::to_string(options.seeds), "must be >= 1",
-                                   "fillings per grid point"));
+        problems.push_back(config_problem(config, "seeds", std::to_string(options.seeds),
+                                          "must be >= 1", "fillings per grid point"));
     }
     if (options.energy_layers < 0) {
-        problems.push_back(problem(config, "output.energy_layers",
-                                   std::to_string(options.energy_layers), "must be >= 0",
-                                   "horizontal layers of the energy per layer"));
+        problems.push_back(config_problem(config, "output.energy_layers",
+                                          std::to_string(options.energy_layers), "must be >= 0",
+                                          "horizontal layers of the energy per layer"));
     }
     for (const auto& v : options.steady.validate()) {
-        problems.push_back(problem(config, v.key, v.value, v.constraint, v.meaning));
+        problems.push_back(config_problem(config, v.key, v.value, v.constraint, v.meaning));
     }
     if (!problems.empty()) throw config::ConfigException(problems);
 
@@ -238,8 +228,8 @@ CharacterizationGrid plan_grid(const CampaignConfig& config, const CharacterizeO
                 // One contact per level (or one for all): every filling runs the same law
                 // and step.
                 const double sized_for_g =
-                    damper->contact.stiffness_for == ContactSpec::StiffnessFor::campaign ? largest_g
-                                                                                         : level;
+                    damper->contact.stiffness_for != ContactSpec::StiffnessFor::level ? largest_g
+                                                                                      : level;
                 const dem::ExcitationContact contact = damper->excitation_contact(
                     std::sqrt(2.0) * g_to_m_s2(sized_for_g), prepared.first_mode_hz);
                 for (int s = 0; s < options.seeds; ++s) {
@@ -390,12 +380,12 @@ void report(const CharacterizeOptions& options, const CharacterizationGrid& grid
     std::ostringstream line;
     const auto m = run.result.apparent_mass_kg;
     line << '[' << done << '/' << grid.runs.size() << "] " << prepared.arrangement.name << ' '
-         << bed.damper->name << ' ' << number_text(bed.level_g) << " g "
-         << number_text(run.frequency_hz) << " Hz seed " << bed.seed
-         << ": M = " << number_text(m.real()) << (m.imag() < 0 ? " - " : " + ")
-         << number_text(std::abs(m.imag())) << "i kg, P = " << number_text(run.result.power_w)
-         << " W, " << run.result.periods << " periods"
-         << (run.result.settled ? "" : " (not settled)");
+         << bed.damper->name << ' ' << significant_text(bed.level_g, 6) << " g "
+         << significant_text(run.frequency_hz, 6) << " Hz seed " << bed.seed
+         << ": M = " << significant_text(m.real(), 6) << (m.imag() < 0 ? " - " : " + ")
+         << significant_text(std::abs(m.imag()), 6)
+         << "i kg, P = " << significant_text(run.result.power_w, 6) << " W, " << run.result.periods
+         << " periods" << (run.result.settled ? "" : " (not settled)");
     options.progress(line.str());
 }
 

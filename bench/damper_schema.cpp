@@ -222,7 +222,10 @@ std::shared_ptr<const config::Table> contact_table() {
         .doc(
             "what an automatic stiffness is sized for: the largest level of the campaign (one "
             "stiffness and time step for every sweep, so the numerics do not change along the "
-            "damping curve) or each sweep's own level (cheaper at low levels)");
+            "damping curve) or each sweep's own level (cheaper at low levels); `materials` "
+            "(normal = \"hertz\"): no stiffness to size, each pair's Hertz constant 4/3 E* "
+            "sqrt(R*) from the Young's moduli and Poisson ratios, the time step for the "
+            "campaign's largest level");
     t.number(
          "restitution", [](ContactSpec & c) -> auto& { return c.particle_particle.restitution; },
          "particle-particle coefficient of restitution")
@@ -559,6 +562,24 @@ std::shared_ptr<const config::Table> damper_table() {
         .leaf("solver.lock");
     t.check([](const DamperSpec& d) { return d.validate(); });
     t.check([](const DamperSpec& d) { return check_characterization(d); });
+    t.check([](const DamperSpec& d) {
+        Violations out;
+        if (d.contact.stiffness_for != ContactSpec::StiffnessFor::materials) return out;
+        if (d.contact.normal != dem::NormalLaw::hertz) {
+            out.push_back({"contact.stiffness_for", "\"materials\"",
+                           "needs normal = \"hertz\": a Hooke spring's stiffness is not a "
+                           "property of the materials",
+                           "what an automatic stiffness is sized for"});
+        }
+        if (d.contact.normal_stiffness) {
+            out.push_back({"contact.normal_stiffness",
+                           config::number_text(*d.contact.normal_stiffness),
+                           "cannot be given with stiffness_for = \"materials\", which takes it "
+                           "from the Young's moduli and Poisson ratios",
+                           "normal stiffness"});
+        }
+        return out;
+    });
     t.check([](const DamperSpec& d) {
         Violations out;
         if (d.locked && d.lock.fraction > 0.0) {

@@ -24,6 +24,7 @@
 #include "config/dotted_path.hpp"
 #include "config/errors.hpp"
 #include "config/value.hpp"
+#include "core/significant_text.hpp"
 #include "core/units.hpp"
 #include "identification/file_error.hpp"
 #include "structure/frf.hpp"
@@ -33,18 +34,6 @@ namespace {
 
 namespace id = identification;
 using Complex = std::complex<double>;
-
-std::string number_text(double v) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%.9g", v);
-    return buffer;
-}
-
-config::ConfigError problem(const CampaignConfig& config, std::string key, std::string value,
-                            std::string constraint, std::string meaning) {
-    return {config.source,     0, 0, std::move(key), std::move(value), std::move(constraint),
-            std::move(meaning)};
-}
 
 std::string file_key(const DamperSpec& damper) {
     return config::join_path(config::join_path("dampers", damper.name), "characterization_file");
@@ -60,9 +49,9 @@ const CharacterizationTable& table_of(const CampaignConfig& config, const Damper
         return cache.emplace(file, read_characterization_csv(damper.characterization_file))
             .first->second;
     } catch (const id::FileError& e) {
-        throw config::ConfigException({problem(config, file_key(damper), config::quoted(file),
-                                               std::string("cannot be read: ") + e.what(),
-                                               "characterization.csv of this damper")});
+        throw config::ConfigException({config_problem(
+            config, file_key(damper), config::quoted(file),
+            std::string("cannot be read: ") + e.what(), "characterization.csv of this damper")});
     }
 }
 
@@ -76,9 +65,9 @@ std::shared_ptr<const DescribingFunction> function_of(const CampaignConfig& conf
             table, file, damper.name, arrangement, damper.characterization_scale));
     } catch (const id::FileError& e) {
         throw config::ConfigException(
-            {problem(config, file_key(damper), config::quoted(file),
-                     std::string("has no describing function to use: ") + e.what(),
-                     "characterization.csv of this damper")});
+            {config_problem(config, file_key(damper), config::quoted(file),
+                            std::string("has no describing function to use: ") + e.what(),
+                            "characterization.csv of this damper")});
     }
 }
 
@@ -467,20 +456,21 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
     std::vector<config::ConfigError> problems;
     for (const auto& d : campaign.dampers) {
         if (d.model == DamperSpec::Model::dem) {
-            problems.push_back(
-                problem(config, config::join_path(config::join_path("dampers", d.name), "model"),
-                        "\"dem\"", "cannot be predicted: needs model = \"describing-function\"",
-                        "predict solves the structure with describing functions (or give "
-                        "--characterization FILE)"));
+            problems.push_back(config_problem(
+                config, config::join_path(config::join_path("dampers", d.name), "model"), "\"dem\"",
+                "cannot be predicted: needs model = \"describing-function\"",
+                "predict solves the structure with describing functions (or give "
+                "--characterization FILE)"));
         }
     }
     if (config.physics.air_drag.on() &&
         !config.structure.excitation.direction.normalized().isApprox(Eigen::Vector3d::UnitZ())) {
-        problems.push_back(problem(config, "physics.air_drag.drag_coefficient",
-                                   config::number_text(config.physics.air_drag.drag_coefficient),
-                                   "cannot be predicted with the drive off the beam's z axis",
-                                   "predict balances the drag along the excitation direction, "
-                                   "the drag acts along the wide face's normal z"));
+        problems.push_back(
+            config_problem(config, "physics.air_drag.drag_coefficient",
+                           config::number_text(config.physics.air_drag.drag_coefficient),
+                           "cannot be predicted with the drive off the beam's z axis",
+                           "predict balances the drag along the excitation direction, "
+                           "the drag acts along the wide face's normal z"));
     }
     if (!problems.empty()) throw config::ConfigException(problems);
     const CampaignPlan plan = plan_campaign(config, context.selection);
@@ -594,20 +584,20 @@ CampaignResult predict_campaign(const CampaignConfig& config, const PredictConte
             sweep.rows.push_back(row);
             std::string tried;
             for (double a : s.drives_tried) {
-                tried += (tried.empty() ? "" : ";") + number_text(a / std::abs(per_volt));
+                tried += (tried.empty() ? "" : ";") + significant_text(a / std::abs(per_volt));
             }
-            sweep.control_log.push_back(prepared.arrangement.name + "," +
-                                        number_text(task.level_g) + "," + number_text(f) + "," +
-                                        row.status + ",0," + std::to_string(s.iterations) + "," +
-                                        number_text(std::abs(row.values[0].amplitude)) + "," +
-                                        number_text(row.values[1].rms) + "," + tried + ",");
+            sweep.control_log.push_back(
+                prepared.arrangement.name + "," + significant_text(task.level_g) + "," +
+                significant_text(f) + "," + row.status + ",0," + std::to_string(s.iterations) +
+                "," + significant_text(std::abs(row.values[0].amplitude)) + "," +
+                significant_text(row.values[1].rms) + "," + tried + ",");
         }
         if (!several.empty()) {
             const std::string where = several.size() == 1
-                                          ? number_text(several.front()) + " Hz"
+                                          ? significant_text(several.front()) + " Hz"
                                           : std::to_string(several.size()) + " frequencies (" +
-                                                number_text(several.front()) + " to " +
-                                                number_text(several.back()) + " Hz)";
+                                                significant_text(several.front()) + " to " +
+                                                significant_text(several.back()) + " Hz)";
             const std::string line = sweep.key + ": more than one stable steady state at " + where +
                                      ": the branch the sweep was on followed, as a stepped sine "
                                      "would (campaign.frequencies.direction)";

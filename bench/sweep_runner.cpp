@@ -24,18 +24,13 @@
 #include "bench/transient_run.hpp"
 #include "control/controller.hpp"
 #include "control/fixed_drive.hpp"
+#include "core/significant_text.hpp"
 #include "core/units.hpp"
 #include "identification/recording_io.hpp"
 #include "structure/frf.hpp"
 
 namespace sb::bench {
 namespace {
-
-std::string number_text(double v) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%.9g", v);
-    return buffer;
-}
 
 std::string format_duration(double seconds) {
     const long s = std::lround(seconds);
@@ -49,17 +44,17 @@ std::string format_duration(double seconds) {
 std::string control_log_line(const SweepTask& task, const control::PointResult& r) {
     std::string amplitudes;
     for (double a : r.amplitudes_tried) {
-        amplitudes += (amplitudes.empty() ? "" : ";") + number_text(a);
+        amplitudes += (amplitudes.empty() ? "" : ";") + significant_text(a);
     }
     std::string rms;
     for (double v : r.rms_per_period) {
-        rms += (rms.empty() ? "" : ";") + number_text(v);
+        rms += (rms.empty() ? "" : ";") + significant_text(v);
     }
-    return task.prepared->arrangement.name + "," + number_text(task.level_g) + "," +
-           number_text(r.frequency_hz) + "," + std::string(control::to_string(r.status)) + "," +
-           std::to_string(r.periods_simulated) + "," + std::to_string(r.updates) + "," +
-           number_text(r.amplitude_final) + "," + number_text(r.rms_final) + "," + amplitudes +
-           "," + rms;
+    return task.prepared->arrangement.name + "," + significant_text(task.level_g) + "," +
+           significant_text(r.frequency_hz) + "," + std::string(control::to_string(r.status)) +
+           "," + std::to_string(r.periods_simulated) + "," + std::to_string(r.updates) + "," +
+           significant_text(r.amplitude_final) + "," + significant_text(r.rms_final) + "," +
+           amplitudes + "," + rms;
 }
 
 /// energy.csv rows of a point: per DEM damper, the energies per period over the steady
@@ -71,15 +66,15 @@ std::vector<std::string> energy_lines(const SweepTask& task, double frequency_hz
     for (std::size_t d = 0; d < energy.size(); ++d) {
         if (!energy[d]) continue;
         const PeriodEnergy& e = *energy[d];
-        std::string line = task.prepared->arrangement.name + "," + number_text(task.level_g) + "," +
-                           number_text(frequency_hz) + "," + damper_names[d] + "," +
+        std::string line = task.prepared->arrangement.name + "," + significant_text(task.level_g) +
+                           "," + significant_text(frequency_hz) + "," + damper_names[d] + "," +
                            std::to_string(task.filling);
         for (double v :
              {e.wall_work_j, e.normal_damping_j, e.friction_j, e.rolling_j, e.kinetic_j}) {
-            line += "," + number_text(v);
+            line += "," + significant_text(v);
         }
-        for (double v : e.layer_dissipation_j) line += "," + number_text(v);
-        for (double v : e.layer_kinetic_j) line += "," + number_text(v);
+        for (double v : e.layer_dissipation_j) line += "," + significant_text(v);
+        for (double v : e.layer_kinetic_j) line += "," + significant_text(v);
         lines.push_back(std::move(line));
     }
     return lines;
@@ -160,8 +155,9 @@ CampaignProgress::CampaignProgress(std::function<void(const std::string&)> sink,
 void CampaignProgress::point_started(const SweepTask& task, int index, double frequency_hz) {
     if (!sink_) return;
     std::ostringstream out;
-    out << "  start " << task.prepared->arrangement.name << ' ' << number_text(task.level_g) << ' '
-        << task.level_unit << ' ' << std::fixed << std::setprecision(3) << frequency_hz << " Hz (";
+    out << "  start " << task.prepared->arrangement.name << ' ' << significant_text(task.level_g)
+        << ' ' << task.level_unit << ' ' << std::fixed << std::setprecision(3) << frequency_hz
+        << " Hz (";
     const auto planned = static_cast<int>(task.frequencies_hz.size());
     if (index < planned) {
         out << "frequency " << index + 1 << " of " << planned << ")";
@@ -193,7 +189,7 @@ void CampaignProgress::point_finished(const SweepTask& task, double frequency_hz
     const double eta = elapsed / simulated * (points_total_ - done);
     std::ostringstream out;
     out << '[' << done << '/' << points_total_ << "] " << task.prepared->arrangement.name << ' '
-        << number_text(task.level_g) << ' ' << task.level_unit << ' ' << std::fixed
+        << significant_text(task.level_g) << ' ' << task.level_unit << ' ' << std::fixed
         << std::setprecision(3) << frequency_hz << " Hz: " << control::to_string(result.status)
         << " after " << result.periods_simulated << " periods (" << result.updates << " updates), "
         << std::setprecision(1) << static_cast<double>(periods_.load()) / std::max(elapsed, 1e-9)
@@ -238,7 +234,7 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
         }
         const dem::ExcitationContact chosen = damper.excitation_contact(
             std::sqrt(2.0) *
-                g_to_m_s2(damper.contact.stiffness_for == ContactSpec::StiffnessFor::campaign
+                g_to_m_s2(damper.contact.stiffness_for != ContactSpec::StiffnessFor::level
                               ? task.stiffness_level_g
                               : task.level_g),
             prepared.first_mode_hz);
@@ -326,12 +322,13 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
             static_cast<int>(std::llround(campaign.transient.duration_s * drive.frequency_hz));
         drive.checkpoint_periods = campaign.transient.checkpoint_periods;
         for (auto& line : release_events(campaign)) out.settings.push_back(std::move(line));
-        const std::string name =
-            prepared.arrangement.name + " " + number_text(task.level_g) + " " + task.level_unit;
+        const std::string name = prepared.arrangement.name + " " + significant_text(task.level_g) +
+                                 " " + task.level_unit;
         progress.point_started(task, 0, drive.frequency_hz);
         run_transient(specimen, plant, drive, checkpoint, save, [&](int periods) {
-            progress.note(name + ": run from rest, " + number_text(periods / drive.frequency_hz) +
-                          " of " + number_text(drive.periods / drive.frequency_hz) + " s");
+            progress.note(name + ": run from rest, " +
+                          significant_text(periods / drive.frequency_hz) + " of " +
+                          significant_text(drive.periods / drive.frequency_hz) + " s");
         });
         out.periods_simulated = drive.periods;
         out.transient_channels = specimen.channel_names();
@@ -464,10 +461,10 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
             assess_grid(so_far, base, static_cast<std::size_t>(std::max(0, budget - added)));
         if (verdict.resolved || !task.refine) break;
         if (verdict.add_hz.empty()) {
-            const std::string line = prepared.arrangement.name + " " + number_text(task.level_g) +
-                                     " " + task.level_unit + ": estimates unresolved after " +
-                                     std::to_string(added) + " added frequencies (" +
-                                     verdict.unresolved_reason + ")";
+            const std::string line = prepared.arrangement.name + " " +
+                                     significant_text(task.level_g) + " " + task.level_unit +
+                                     ": estimates unresolved after " + std::to_string(added) +
+                                     " added frequencies (" + verdict.unresolved_reason + ")";
             out.settings.push_back(line);
             progress.note(line);
             break;

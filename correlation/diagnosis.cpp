@@ -21,11 +21,11 @@ namespace {
 std::vector<LevelFeatureValues> from_damping_rows(
     const std::vector<identification::DampingRow>& rows, const StatedUncertainty& stated) {
     std::vector<LevelFeatureValues> out;
-    constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+    constexpr double kNotMeasured = std::numeric_limits<double>::quiet_NaN();
     for (const auto& r : rows) {
         LevelFeatureValues v{r.arrangement, r.level_g, r.fillings, {}, {}};
-        v.value.fill(kNaN);
-        v.sigma.fill(kNaN);
+        v.value.fill(kNotMeasured);
+        v.sigma.fill(kNotMeasured);
         const auto f = static_cast<std::size_t>(LevelFeature::natural_frequency);
         const auto z = static_cast<std::size_t>(LevelFeature::damping_ratio);
         const double n = std::max(1, r.fillings);

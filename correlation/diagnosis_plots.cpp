@@ -15,7 +15,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
 
 /// The arrangements of the measurement, in order of first appearance.
 std::vector<std::string> arrangements_of(const Measurement& m) {
@@ -39,7 +39,7 @@ std::vector<double> levels_of(const Measurement& m, const std::string& arrangeme
 
 /// Value `i` of a simulation's features, NaN where it has none.
 double simulated_at(const SimulatedFeatures* s, std::size_t i) {
-    return s != nullptr && i < s->value.size() ? s->value[i] : kNaN;
+    return s != nullptr && i < s->value.size() ? s->value[i] : kNoValue;
 }
 
 /// The row of a simulated damping curve for one level, by the measurement's estimator (any
@@ -103,7 +103,8 @@ std::string levels_data(const DiagnosisResult& r, const SimulatedFeatures* impro
     const auto fn = static_cast<std::size_t>(LevelFeature::natural_frequency);
     const std::string& method = r.measurement.damping_method;
     for (const double level : levels_of(r.measurement, arrangement)) {
-        double measured_zeta = kNaN, sigma_zeta = kNaN, measured_fn = kNaN, sigma_fn = kNaN;
+        double measured_zeta = kNoValue, sigma_zeta = kNoValue, measured_fn = kNoValue,
+               sigma_fn = kNoValue;
         for (const auto& v : r.measured) {
             if (v.arrangement == arrangement && same_level(v.level_g, level)) {
                 measured_zeta = 100.0 * v.value[zeta];
@@ -115,11 +116,11 @@ std::string levels_data(const DiagnosisResult& r, const SimulatedFeatures* impro
         const auto* baseline = damping_row(&r.baseline, arrangement, level, method);
         const auto* better = damping_row(improved, arrangement, level, method);
         out << num(level, 10) << ' ' << num(measured_zeta) << ' ' << num(sigma_zeta) << ' '
-            << num(baseline ? 100.0 * baseline->damping_ratio : kNaN) << ' '
-            << num(better ? 100.0 * better->damping_ratio : kNaN) << ' ' << num(measured_fn, 10)
+            << num(baseline ? 100.0 * baseline->damping_ratio : kNoValue) << ' '
+            << num(better ? 100.0 * better->damping_ratio : kNoValue) << ' ' << num(measured_fn, 10)
             << ' ' << num(sigma_fn) << ' '
-            << num(baseline ? baseline->natural_frequency_hz : kNaN, 10) << ' '
-            << num(better ? better->natural_frequency_hz : kNaN, 10) << '\n';
+            << num(baseline ? baseline->natural_frequency_hz : kNoValue, 10) << ' '
+            << num(better ? better->natural_frequency_hz : kNoValue, 10) << '\n';
     }
     return out.str();
 }

@@ -4,16 +4,11 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/significant_text.hpp"
 #include "correlation/mismatch.hpp"
 
 namespace sb::correlation {
 namespace {
-
-std::string number(double v, int digits = 3) {
-    char buffer[40];
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
-    return buffer;
-}
 
 /// A 95 % interval's standard deviation, as if normal.
 constexpr double kNormal95 = 3.92;
@@ -86,7 +81,8 @@ DriftResult drift_test(const bench::CampaignConfig& config, const Measurement& m
     s << "`" << parameter.path << "` calibrated level by level: ";
     for (std::size_t k = 0; k < result.levels.size(); ++k) {
         const auto& v = result.levels[k];
-        s << (k ? ", " : "") << number(v.value) << " at " << number(v.level_g) << " g";
+        s << (k ? ", " : "") << significant_text(v.value, 3) << " at "
+          << significant_text(v.level_g, 3) << " g";
         if (!v.identifiable) s << " (not identifiable)";
     }
     if (result.used < 2) {
@@ -107,9 +103,9 @@ DriftResult drift_test(const bench::CampaignConfig& config, const Measurement& m
     }
     result.drifts = result.constant_chi2 > chi2_quantile(0.99, result.used - 1);
     s << (result.drifts ? "; it drifts with the level (" : "; no drift beyond the noise (")
-      << "slope " << number(result.slope) << " ± " << number(result.slope_sigma)
-      << " per g, χ² of a constant " << number(result.constant_chi2) << " for " << result.used
-      << " levels)";
+      << "slope " << significant_text(result.slope, 3) << " ± "
+      << significant_text(result.slope_sigma, 3) << " per g, χ² of a constant "
+      << significant_text(result.constant_chi2, 3) << " for " << result.used << " levels)";
     if (result.drifts) {
         s << ": the model misses a physics whose effect changes with the level, which this "
              "value absorbs";

@@ -13,8 +13,6 @@ namespace sb::correlation {
 namespace {
 
 /// Three significant digits, as the findings of drift and mismatch are worded.
-std::string number(double v) { return num(v, 3); }
-
 bool is_held_out(const std::vector<std::pair<std::string, double>>& held_out,
                  const std::string& arrangement, double level_g) {
     return std::any_of(held_out.begin(), held_out.end(), [&](const auto& h) {
@@ -106,11 +104,11 @@ Confirmation confirm_winner(const bench::CampaignConfig& config, const Candidate
     }
     c.confirmed = c.fit < c.baseline_fit && (held_out.empty() || c.held_out < c.baseline_held_out);
     c.sentence = std::string(c.confirmed ? "confirmed" : "not confirmed") + " on " + c.simulation +
-                 ": misfit " + number(c.baseline_fit) + " -> " + number(c.fit) +
+                 ": misfit " + num(c.baseline_fit, 3) + " -> " + num(c.fit, 3) +
                  " on the fitted levels";
     if (!held_out.empty()) {
         c.sentence +=
-            ", " + number(c.baseline_held_out) + " -> " + number(c.held_out) + " held out";
+            ", " + num(c.baseline_held_out, 3) + " -> " + num(c.held_out, 3) + " held out";
     }
     return c;
 }
@@ -246,7 +244,7 @@ HypothesisTest test_hypotheses(const bench::CampaignConfig& config, const Measur
         if (options.calibration.progress) {
             options.calibration.progress(
                 fit.name() + ": " +
-                (fit.error.empty() ? "BIC " + number(fit.baseline_bic) + " -> " + number(fit.bic)
+                (fit.error.empty() ? "BIC " + num(fit.baseline_bic, 3) + " -> " + num(fit.bic, 3)
                                    : "not fitted: " + fit.error));
         }
         test.fits.push_back(std::move(fit));
@@ -294,23 +292,23 @@ HypothesisTest test_hypotheses(const bench::CampaignConfig& config, const Measur
         const auto& w = test.fits[static_cast<std::size_t>(test.winner)];
         std::string s = "the model left out " + w.left_out() + " (" + w.name() + "): ";
         for (std::size_t j = 0; j < w.free.size(); ++j) {
-            s += (j ? ", " : "") + w.free[j].path + " = " + number(w.values[j]);
+            s += (j ? ", " : "") + w.free[j].path + " = " + num(w.values[j], 3);
             if (j < w.findings.size()) {
-                s += " [" + number(w.findings[j].lo95) + ", " + number(w.findings[j].hi95) + "]";
+                s += " [" + num(w.findings[j].lo95, 3) + ", " + num(w.findings[j].hi95, 3) + "]";
             }
         }
         s +=
-            "; misfit " + number(w.baseline_fit) + " -> " + number(w.fit) + " on the fitted levels";
+            "; misfit " + num(w.baseline_fit, 3) + " -> " + num(w.fit, 3) + " on the fitted levels";
         if (!test.held_out.empty()) {
-            s += ", " + number(w.baseline_held_out) + " -> " + number(w.held_out) + " held out";
+            s += ", " + num(w.baseline_held_out, 3) + " -> " + num(w.held_out, 3) + " held out";
         }
-        s += ", BIC " + number(w.baseline_bic) + " -> " + number(w.bic);
+        s += ", BIC " + num(w.baseline_bic, 3) + " -> " + num(w.bic, 3);
         if (test.winner > 0) {
             const auto& lowest = test.fits.front();
-            s += " (" + lowest.name() + " had the lowest BIC, " + number(lowest.bic);
+            s += " (" + lowest.name() + " had the lowest BIC, " + num(lowest.bic, 3);
             s += is_strong(lowest, held_out)
                      ? ", but predicts the held-out levels " +
-                           number(lowest.held_out / w.held_out) + " times worse)"
+                           num(lowest.held_out / w.held_out, 3) + " times worse)"
                      : ", but does not predict the held-out levels better than the baseline)";
         }
         if (test.confirmation) s += "; " + test.confirmation->sentence;
@@ -322,10 +320,10 @@ HypothesisTest test_hypotheses(const bench::CampaignConfig& config, const Measur
             "no physics of the catalogue explains the mismatch: the best, " +
             test.fits.front().name() +
             (test.fits.front().error.empty()
-                 ? ", lowers the BIC from " + number(test.fits.front().baseline_bic) + " to " +
-                       number(test.fits.front().bic) + " and the held-out misfit from " +
-                       number(test.fits.front().baseline_held_out) + " to " +
-                       number(test.fits.front().held_out)
+                 ? ", lowers the BIC from " + num(test.fits.front().baseline_bic, 3) + " to " +
+                       num(test.fits.front().bic, 3) + " and the held-out misfit from " +
+                       num(test.fits.front().baseline_held_out, 3) + " to " +
+                       num(test.fits.front().held_out, 3)
                  : ", could not be fitted: " + test.fits.front().error);
     }
     return test;

@@ -6,26 +6,21 @@
 #include <limits>
 #include <sstream>
 
+#include "core/significant_text.hpp"
 #include "identification/damping_curve.hpp"
 
 namespace sb::correlation {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kMissingFeature = std::numeric_limits<double>::quiet_NaN();
 
 std::size_t index(LevelFeature f) { return static_cast<std::size_t>(f); }
-
-std::string number(double v, int digits = 3) {
-    char buffer[40];
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
-    return buffer;
-}
 
 /// One filling's features at one level.
 std::array<double, kLevelFeatures> filling_values(const identification::Recording& recording,
                                                   const identification::LevelIdentification& l) {
     std::array<double, kLevelFeatures> v;
-    v.fill(kNaN);
+    v.fill(kMissingFeature);
     const auto& estimate = l.circle_fit.ok() ? l.circle_fit : l.half_power;
     if (estimate.ok()) {
         v[index(LevelFeature::natural_frequency)] = estimate.natural_frequency_hz;
@@ -80,7 +75,10 @@ double stated_sigma(LevelFeature f, double value, const StatedUncertainty& state
 std::string level_list(const std::vector<double>& levels) {
     std::string out;
     for (std::size_t i = 0; i < levels.size(); ++i) {
-        out += (i == 0 ? "" : i + 1 == levels.size() ? " and " : ", ") + number(levels[i]);
+        out += (i == 0                   ? ""
+                : i + 1 == levels.size() ? " and "
+                                         : ", ") +
+               significant_text(levels[i], 3);
     }
     return out + " g";
 }
@@ -132,8 +130,8 @@ std::vector<LevelFeatureValues> level_feature_values(const identification::Recor
                 if (std::isfinite(values[f])) xs.push_back(values[f]);
             }
             if (xs.empty()) {
-                out[k].value[f] = kNaN;
-                out[k].sigma[f] = kNaN;
+                out[k].value[f] = kMissingFeature;
+                out[k].sigma[f] = kMissingFeature;
                 continue;
             }
             double mean = 0.0;
@@ -210,11 +208,11 @@ std::vector<FeatureMismatch> locate_mismatch(const std::vector<LevelFeatureValue
             std::ostringstream s;
             s << arrangement << ": the " << level_feature_name(fm.feature);
             if (!fm.beyond_noise) {
-                s << " agrees within the noise at its " << n << " level(s) (χ² " << number(fm.chi2)
-                  << " for " << n << ")";
+                s << " agrees within the noise at its " << n << " level(s) (χ² "
+                  << significant_text(fm.chi2, 3) << " for " << n << ")";
             } else {
-                s << " disagrees beyond the noise (χ² " << number(fm.chi2) << " for " << n
-                  << " levels";
+                s << " disagrees beyond the noise (χ² " << significant_text(fm.chi2, 3) << " for "
+                  << n << " levels";
                 if (!fm.levels_beyond.empty()) {
                     s << "; beyond 3 σ at " << level_list(fm.levels_beyond);
                 }

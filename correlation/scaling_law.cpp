@@ -6,6 +6,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/significant_text.hpp"
+
 namespace sb::correlation {
 namespace {
 
@@ -72,12 +74,6 @@ double crossing(const std::vector<LevelResidual>& r, double p0, double end, doub
         (fit_exponent(r, mid).chi2 > target ? outside : inside) = mid;
     }
     return 0.5 * (inside + outside);
-}
-
-std::string number(double v, int digits = 3) {
-    char buffer[40];
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
-    return buffer;
 }
 
 }  // namespace
@@ -148,16 +144,19 @@ std::string describe_scaling(const ScalingFit& fit) {
         case ScalingShape::none:
             return "is within the noise at every level";
         case ScalingShape::constant:
-            return "is the same at every level (" + number(fit.coefficient) + ")";
+            return "is the same at every level (" + significant_text(fit.coefficient, 3) + ")";
         case ScalingShape::linear:
-            return "grows in proportion to the level (" + number(fit.coefficient) + " A)";
+            return "grows in proportion to the level (" + significant_text(fit.coefficient, 3) +
+                   " A)";
         case ScalingShape::inverse:
-            return "falls as the level rises (" + number(fit.coefficient) + " / A)";
+            return "falls as the level rises (" + significant_text(fit.coefficient, 3) + " / A)";
         case ScalingShape::quadratic:
-            return "grows with the square of the level (" + number(fit.coefficient) + " A²)";
+            return "grows with the square of the level (" + significant_text(fit.coefficient, 3) +
+                   " A²)";
         case ScalingShape::power:
-            return "varies like A^" + number(fit.exponent) + " (" + number(fit.exponent_lo) +
-                   " to " + number(fit.exponent_hi) + ", 68 %)";
+            return "varies like A^" + significant_text(fit.exponent, 3) + " (" +
+                   significant_text(fit.exponent_lo, 3) + " to " +
+                   significant_text(fit.exponent_hi, 3) + ", 68 %)";
     }
     return "";
 }

@@ -8,10 +8,13 @@
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <optional>
 #include <random>
 #include <sstream>
 #include <stdexcept>
+
+#include "core/significant_text.hpp"
 
 namespace sb::dem {
 
@@ -208,9 +211,30 @@ Violations SettleOptions::validate() const {
 double settling_step_s(const SolverOptions& options, const ParticleSet& initial,
                        const SettleOptions& so) {
     const ContactOptions& c = options.contact;
-    if (c.normal != NormalLaw::hooke || initial.radii_m.empty()) return so.dt_s;
+    if (initial.radii_m.empty()) return so.dt_s;
     const double r = *std::min_element(initial.radii_m.begin(), initial.radii_m.end());
     const double m = options.particles.material.density_kg_m3 * 4.0 / 3.0 * kPi * r * r * r;
+    if (c.normal == NormalLaw::hertz) {
+        // A Hertz contact stiffens with the impact speed; the fastest impacts of settling are
+        // of a sphere falling across the enclosure. The smallest spheres have the shortest
+        // contacts (t_c ~ m*^{2/5} R*^{-1/5}).
+        const EnclosureOptions& e = options.enclosure;
+        const double extent =
+            std::max({e.height_m, e.shape == EnclosureShape::cylinder ? e.inner_diameter_m : 0.0,
+                      e.shape == EnclosureShape::box ? std::max(e.length_x_m, e.length_y_m) : 0.0});
+        const double fall_speed = std::sqrt(2.0 * options.gravity_m_s2.norm() * extent);
+        if (!(fall_speed > 0.0)) return so.dt_s;
+        const Material& pm = options.particles.material;
+        const double k_pair =
+            c.normal_stiffness > 0.0 ? c.normal_stiffness : hertz_constant(pm, r, pm, r);
+        const double k_wall =
+            c.normal_stiffness > 0.0
+                ? c.normal_stiffness
+                : hertz_constant(pm, r, c.wall_material, std::numeric_limits<double>::infinity());
+        const double contact_time = std::min(hertz_contact_time(0.5 * m, k_pair, fall_speed),
+                                             hertz_contact_time(m, k_wall, fall_speed));
+        return std::min(so.dt_s, contact_time / kSettleStepsPerContact);
+    }
     const double k_wall =
         c.wall_normal_stiffness > 0.0 ? c.wall_normal_stiffness : c.normal_stiffness;
     // Undamped half periods (the damped ones are longer): two of the smallest spheres
@@ -485,6 +509,13 @@ double hertz_contact_time(double m_eff, double k, double v) {
     return 2.0 * 0.4 * beta * std::pow(1.25 * m_eff / k, 0.4) * std::pow(v, -0.2);
 }
 
+double hertz_constant(const Material& a, double r_a_m, const Material& b, double r_b_m) {
+    const double e_star = 1.0 / ((1.0 - a.poisson_ratio * a.poisson_ratio) / a.youngs_modulus_pa +
+                                 (1.0 - b.poisson_ratio * b.poisson_ratio) / b.youngs_modulus_pa);
+    const double r_star = std::isinf(r_b_m) ? r_a_m : r_a_m * r_b_m / (r_a_m + r_b_m);
+    return 4.0 / 3.0 * e_star * std::sqrt(r_star);
+}
+
 double hooke_contact_time(double m_eff, double k, double e) {
     const double zeta = linear_zeta_from_restitution(e);
     const double w0 = std::sqrt(k / m_eff);
@@ -539,15 +570,6 @@ std::string describe(const AutoStiffness& a, NormalLaw law) {
     return out.str();
 }
 
-namespace {
-/// Nine significant digits for the run log.
-std::string number_text(double v) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "%.9g", v);
-    return buffer;
-}
-}  // namespace
-
 ExcitationContact choose_contact(const ParticleOptions& particles,
                                  const EnclosureOptions& enclosure, NormalLaw law,
                                  double restitution, std::optional<double> given_stiffness,
@@ -587,11 +609,48 @@ ExcitationContact choose_contact(const ParticleOptions& particles,
                 : hertz_contact_time(0.5 * mass, out.stiffness, sized.impact_speed_m_s);
         out.time_step_s = time_step_fraction * contact_time;
         out.pair_contact_time_s = contact_time;
-        out.log = "stiffness " + number_text(out.stiffness) + " (given), contact time " +
-                  number_text(contact_time) + " s, time step " + number_text(out.time_step_s) +
-                  " s";
+        out.log = "stiffness " + significant_text(out.stiffness) + " (given), contact time " +
+                  significant_text(contact_time) + " s, time step " +
+                  significant_text(out.time_step_s) + " s";
     }
     out.stiffness_log = out.log.substr(0, out.log.rfind(", time step "));
+    return out;
+}
+
+ExcitationContact materials_contact(const ParticleOptions& particles,
+                                    const EnclosureOptions& enclosure,
+                                    const Material& wall_material, double time_step_fraction,
+                                    double peak_acceleration_m_s2, double frequency_hz) {
+    const double d = particles.largest_diameter_m();
+    const double mass = particles.material.density_kg_m3 * kPi * d * d * d / 6.0;
+    AutoStiffnessInput in;
+    in.law = NormalLaw::hertz;
+    in.particle_diameter_m = d;
+    in.density_kg_m3 = particles.material.density_kg_m3;
+    in.level_m_s2 = peak_acceleration_m_s2;
+    in.frequency_hz = frequency_hz;
+    in.gap_m = enclosure.height_m;
+    in.time_step_fraction = time_step_fraction;
+    // auto_stiffness() estimates the impact speed (and checks the inputs); its stiffness,
+    // sized from an overlap, is not used.
+    const double speed = auto_stiffness(in).impact_speed_m_s;
+    const Material& pm = particles.material;
+    const double k_pair = hertz_constant(pm, 0.5 * d, pm, 0.5 * d);
+    const double k_wall =
+        hertz_constant(pm, 0.5 * d, wall_material, std::numeric_limits<double>::infinity());
+    const double pair_time = hertz_contact_time(0.5 * mass, k_pair, speed);
+    const double wall_time = hertz_contact_time(mass, k_wall, speed);
+    ExcitationContact out;
+    out.stiffness = 0.0;
+    out.impact_speed_m_s = speed;
+    out.pair_contact_time_s = pair_time;
+    out.time_step_s = time_step_fraction * std::min(pair_time, wall_time);
+    out.stiffness_log = "Hertz from the materials: k " + significant_text(k_pair) +
+                        " N/m^1.5 particle-particle, " + significant_text(k_wall) +
+                        " N/m^1.5 particle-wall (impact speed " + significant_text(speed) +
+                        " m/s), contact time particle-particle " + significant_text(pair_time) +
+                        " s, particle-wall " + significant_text(wall_time) + " s";
+    out.log = out.stiffness_log + ", time step " + significant_text(out.time_step_s) + " s";
     return out;
 }
 

@@ -45,8 +45,10 @@ struct SettleOptions {
 inline constexpr double kSettleStepsPerContact = 3.5;
 
 /// The settling step: SettleOptions::dt_s, or a kSettleStepsPerContact-th of the shortest
-/// Hooke contact (two of the smallest spheres, or one against a wall of its own stiffness)
-/// where that is shorter. Hertz contacts settle at dt_s.
+/// contact where that is shorter: Hooke undamped (two of the smallest spheres, or one against a
+/// wall of its own stiffness); Hertz at the speed of a fall across the enclosure's largest
+/// extent under the options' gravity (the pair's constant, or 4/3 E* sqrt(R*) of each pair
+/// from the materials when the constant is 0; a flat wall).
 double settling_step_s(const SolverOptions& options, const ParticleSet& initial,
                        const SettleOptions& so);
 
@@ -158,6 +160,10 @@ std::string describe(const AutoStiffness& chosen, NormalLaw law);
 double hertz_contact_time(double m_eff, double k, double v);
 /// Linear spring-dashpot contact duration pi / sqrt(k/m* - (c/2m*)^2) [s].
 double hooke_contact_time(double m_eff, double k, double restitution);
+/// Hertz constant k = 4/3 E* sqrt(R*) [N/m^1.5] of two spheres of radii r_a, r_b (R* = r_a r_b
+/// / (r_a + r_b); r_b infinite for a flat wall), E* = 1 / ((1 - nu_a^2)/E_a + (1 - nu_b^2)/E_b)
+/// (Johnson, Contact Mechanics, 1985, §4.2).
+double hertz_constant(const Material& a, double r_a_m, const Material& b, double r_b_m);
 
 /// The contact stiffness and time step for an excitation of one level and frequency (a
 /// stepped-sine sweep), and the line that says so in the run log.
@@ -182,5 +188,16 @@ ExcitationContact choose_contact(const ParticleOptions& particles,
                                  double restitution, std::optional<double> given_stiffness,
                                  double max_overlap_fraction, double time_step_fraction,
                                  double peak_acceleration_m_s2, double frequency_hz);
+
+/// The Hertz contact of the materials (no stiffness to choose: each pair's constant 4/3 E*
+/// sqrt(R*) from the Young's moduli and Poisson ratios, ExcitationContact::stiffness 0 as
+/// ContactOptions::normal_stiffness reads it) and its time step: time_step_fraction times the
+/// shorter contact of two of the largest spheres and of one against a flat wall of
+/// `wall_material`, at the largest impact speed choose_contact() estimates. Throws
+/// std::invalid_argument for inputs it cannot size.
+ExcitationContact materials_contact(const ParticleOptions& particles,
+                                    const EnclosureOptions& enclosure,
+                                    const Material& wall_material, double time_step_fraction,
+                                    double peak_acceleration_m_s2, double frequency_hz);
 
 }  // namespace sb::dem

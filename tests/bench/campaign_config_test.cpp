@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -158,6 +159,34 @@ TEST(CampaignConfig, TheDiameterScatterReadsWithinItsBoundAndIsLocatedOutside) {
                   0u)
             << errors[0];
     }
+}
+
+TEST(CampaignConfig, AStiffnessFromTheMaterialsNeedsHertzAndNoGivenStiffness) {
+    const std::string base = std::string(builtin_config_text());
+    const std::string hertz =
+        replaced(base, "normal = \"hooke\"", "normal = \"hertz\"\nstiffness_for = \"materials\"");
+    const auto config = load_campaign_config_text(hertz, "hertz.toml");
+    EXPECT_EQ(config.campaign.dampers[0].contact.stiffness_for,
+              ContactSpec::StiffnessFor::materials);
+    // at 2 g RMS near 6.4 Hz: steel on steel, the solver's own constants (stiffness 0)
+    const dem::ExcitationContact chosen =
+        config.campaign.dampers[0].excitation_contact(std::sqrt(2.0) * 2.0 * 9.80665, 6.4);
+    EXPECT_EQ(chosen.stiffness, 0.0);
+    EXPECT_GT(chosen.time_step_s, 0.0);
+
+    auto errors = errors_of(
+        replaced(base, "normal = \"hooke\"", "normal = \"hooke\"\nstiffness_for = \"materials\""));
+    ASSERT_EQ(errors.size(), 1u);
+    EXPECT_NE(errors[0].find("bad.toml:44:"), std::string::npos) << errors[0];
+    EXPECT_NE(errors[0].find("dampers.pd.contact.stiffness_for"), std::string::npos) << errors[0];
+    EXPECT_NE(errors[0].find("needs normal = \"hertz\""), std::string::npos) << errors[0];
+
+    errors = errors_of(replaced(hertz, "max_overlap_fraction = 0.02",
+                                "max_overlap_fraction = 0.02\nnormal_stiffness = 4e9"));
+    ASSERT_EQ(errors.size(), 1u);
+    EXPECT_NE(errors[0].find("dampers.pd.contact.normal_stiffness"), std::string::npos)
+        << errors[0];
+    EXPECT_NE(errors[0].find("cannot be given with stiffness_for"), std::string::npos) << errors[0];
 }
 
 TEST(CampaignConfig, ALockThatHoldsNothingOrFightsLockedIsReportedAtItsKey) {

@@ -20,8 +20,8 @@
 namespace sb::bench {
 namespace {
 
-using test::drive_along_axis;
-using test::sphere_mass_kg;
+using sb::test::drive_along_axis;
+using sb::test::sphere_mass_kg;
 
 /// The amplitude of the spectrum's bin at `harmonic` times the drive: the windows hold
 /// 2 window_periods periods, so harmonic h falls on bin 2 h window_periods (bins from 1).
@@ -33,7 +33,7 @@ TEST(CharacterizationEnergy, ALockedBedCarriesTheKineticEnergyOfARigidMassAtTwic
     // 30 spheres settled under gravity along the axis, then held (lock.fraction = 1): a
     // rigid mass m moving as v = -(A/w) cos(w t), so its kinetic energy is
     // 1/4 m (A/w)^2 (1 + cos 2 w t): a mean and a line at 2f of the same height, nothing at f.
-    EnclosureSetup setup = test::locked_bed(Eigen::Vector3d(0.0, 0.0, -kStandardGravity));
+    EnclosureSetup setup = sb::test::locked_bed(Eigen::Vector3d(0.0, 0.0, -kStandardGravity));
     setup.options.energy_layers = 4;
     setup.bed_energy = true;
     const HarmonicDrive drive = drive_along_axis(g_to_m_s2(2.0), 6.3);
@@ -67,7 +67,7 @@ TEST(CharacterizationEnergy, APlasticParticleInAGapDissipatesInTwoEqualImpactsPe
     // odd; the bottom impact dissipates in the bottom layer, the top one in the top layer.
     constexpr double kGap = 5e-3;
     constexpr double kFrequency = 10.0;
-    EnclosureSetup setup = test::single_particle(kGap, 0.01);
+    EnclosureSetup setup = sb::test::single_particle(kGap, 0.01);
     setup.options.energy_layers = 2;
     setup.bed_energy = true;
     const double w = hz_to_rad_s(kFrequency);
@@ -81,7 +81,7 @@ TEST(CharacterizationEnergy, APlasticParticleInAGapDissipatesInTwoEqualImpactsPe
     const BedEnergy& e = *point.energy;
 
     const double m = sphere_mass_kg(3e-3, 7800.0);
-    const double impact_speed = x_peak * w * (1.0 - std::cos(test::impact_phase(1.0)));
+    const double impact_speed = x_peak * w * (1.0 - std::cos(sb::test::impact_phase(1.0)));
     const double power = m * impact_speed * impact_speed * kFrequency;
     // 2 % as characterization_test.cpp: the walls' stiffness and the dashpot of e = 0.01.
     EXPECT_NEAR(e.normal_damping_w, power, 0.02 * power);
@@ -119,7 +119,7 @@ CampaignConfig small_bed() {
 }
 
 CharacterizeOptions short_runs(int energy_layers) {
-    CharacterizeOptions options = test::short_characterization(1, 2, 6);
+    CharacterizeOptions options = sb::test::short_characterization(1, 2, 6);
     options.levels_g = {1.5};
     options.energy_layers = energy_layers;
     return options;

@@ -10,7 +10,7 @@ namespace sb::bench {
 namespace {
 
 /// Closed-form grid points: only rounding.
-constexpr double kRounding = 1e-9;
+constexpr double kGridRounding = 1e-9;
 constexpr double kFirstModeHz = 6.37;
 
 double phase(double r, double zeta) { return std::atan2(2.0 * zeta * r, 1.0 - r * r); }
@@ -23,13 +23,13 @@ TEST(FrequencyGrid, ABuiltGridSpansTheRatiosAndStepsEquallyInPhase) {
     spec.grid_damping_ratio = 0.03;
     const auto grid = frequency_grid(spec, kFirstModeHz);
     ASSERT_EQ(grid.size(), 9u);
-    EXPECT_NEAR(grid.front(), 0.9 * kFirstModeHz, kRounding);
-    EXPECT_NEAR(grid.back(), 1.1 * kFirstModeHz, kRounding);
+    EXPECT_NEAR(grid.front(), 0.9 * kFirstModeHz, kGridRounding);
+    EXPECT_NEAR(grid.back(), 1.1 * kFirstModeHz, kGridRounding);
     const double step = (phase(1.1, 0.03) - phase(0.9, 0.03)) / 8.0;
     for (std::size_t k = 1; k < grid.size(); ++k) {
         EXPECT_GT(grid[k], grid[k - 1]) << "stepped upward";
         EXPECT_NEAR(phase(grid[k] / kFirstModeHz, 0.03) - phase(grid[k - 1] / kFirstModeHz, 0.03),
-                    step, kRounding);
+                    step, kGridRounding);
     }
 }
 

@@ -26,11 +26,11 @@ using test::fresh_dir;
 
 // The chain base -k1- m1 -k2- m2 along z, stiffness-proportional damping C = beta K (a
 // dashpot beta k_i across each spring).
-constexpr double kM1 = 1.0, kM2 = 0.5;      // [kg]
-constexpr double kK1 = 4.0e4, kK2 = 1.0e4;  // [N/m]
-constexpr double kBeta = 2e-4;              // [s]
-constexpr double kConfigMassKg = 0.1;       // [[structure.matrix.masses]] at m1
-constexpr double kBlockMassKg = 0.05;       // the arrangement's mounting block at m2
+constexpr double kM1 = 1.0, kM2 = 0.5;       // [kg]
+constexpr double kK1 = 4.0e4, kK2 = 1.0e4;   // [N/m]
+constexpr double kStiffnessLossBeta = 2e-4;  // [s]
+constexpr double kConfigMassKg = 0.1;        // [[structure.matrix.masses]] at m1
+constexpr double kBlockMassKg = 0.05;        // the arrangement's mounting block at m2
 // The rigid bed: 20 steel spheres of 3 mm.
 constexpr int kSpheres = 20;
 constexpr double kSphereDiameterM = 0.003, kSteelKgM3 = 7800.0;
@@ -41,8 +41,8 @@ constexpr double kSphereDiameterM = 0.003, kSteelKgM3 = 7800.0;
 ///   [-(k2 + iW c2), k2 - W^2 m2 + iW c2          ] [X2] = [0         ] X_b
 std::complex<double> chain_transmissibility(double m1, double m2, double f_hz) {
     const double w = kTwoPi * f_hz;
-    const std::complex<double> s1 = kK1 + 1i * w * kBeta * kK1;
-    const std::complex<double> s2 = kK2 + 1i * w * kBeta * kK2;
+    const std::complex<double> s1 = kK1 + 1i * w * kStiffnessLossBeta * kK1;
+    const std::complex<double> s2 = kK2 + 1i * w * kStiffnessLossBeta * kK2;
     const std::complex<double> d11 = s1 + s2 - w * w * m1;
     const std::complex<double> d22 = s2 - w * w * m2;
     return s2 * s1 / (d11 * d22 - s2 * s2);
@@ -201,9 +201,9 @@ std::filesystem::path write_chain_with_damping_file(const std::string& name,
 
 TEST(MatrixCampaign, ADampingMatrixFileGivesTheClosedFormOfItsDashpots) {
     const std::string c = "%%MatrixMarket matrix coordinate real symmetric\n2 2 3\n1 1 " +
-                          std::to_string(kBeta * (kK1 + kK2)) + "\n2 1 " +
-                          std::to_string(-kBeta * kK2) + "\n2 2 " + std::to_string(kBeta * kK2) +
-                          "\n";
+                          std::to_string(kStiffnessLossBeta * (kK1 + kK2)) + "\n2 1 " +
+                          std::to_string(-kStiffnessLossBeta * kK2) + "\n2 2 " +
+                          std::to_string(kStiffnessLossBeta * kK2) + "\n";
     const CampaignConfig config =
         load_campaign_config(write_chain_with_damping_file("matrix-damping-file", c));
     const CampaignResult result = test::run_on_one_thread(config);

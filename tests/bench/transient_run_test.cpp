@@ -33,7 +33,7 @@ std::vector<double> cells(const std::string& line) {
 
 // A mass on a spring, 2 % damped, driven from rest by a fixed force at 0.8 of its natural
 // frequency.
-constexpr double kMassKg = 0.05, kStiffness = 2e4, kZeta = 0.02, kForceN = 0.5;
+constexpr double kOscillatorMassKg = 0.05, kStiffness = 2e4, kZeta = 0.02, kForceN = 0.5;
 
 const std::string kSdof = R"(
 [campaign]
@@ -56,8 +56,8 @@ series_samples_per_period = 64
 /// x(t) of the mass from rest under F sin(w t): the steady state plus the free vibration
 /// that meets x(0) = 0, x'(0) = 0; `mass_kg`: the table's, or with what moves with it; the
 /// dashpot is the table's own, c = 2 zeta sqrt(k m_table) (its modal damping).
-double closed_form_displacement(double t, double mass_kg = kMassKg) {
-    const double c = 2.0 * kZeta * std::sqrt(kStiffness * kMassKg);
+double closed_form_displacement(double t, double mass_kg = kOscillatorMassKg) {
+    const double c = 2.0 * kZeta * std::sqrt(kStiffness * kOscillatorMassKg);
     const double wn = std::sqrt(kStiffness / mass_kg);
     const double zeta = c / (2.0 * mass_kg * wn);
     const double w = kTwoPi * 80.0;
@@ -216,10 +216,10 @@ fraction = 1.0
                                               "0.4");
     const CampaignConfig config = load_campaign_config_text(text, "held.toml");
     const double bed_kg = particle_mass_kg(config.campaign.dampers.front(), config.campaign.seed);
-    ASSERT_GT(bed_kg, 4.0 * kMassKg);
+    ASSERT_GT(bed_kg, 4.0 * kOscillatorMassKg);
     const CampaignResult result = test::run_on_one_thread(config);
     ASSERT_EQ(result.sweeps.size(), 1u);
-    const double total_kg = kMassKg + bed_kg;
+    const double total_kg = kOscillatorMassKg + bed_kg;
     const double sag_m = -bed_kg * kStandardGravity / kStiffness;  // the bed's weight, static
     double largest = 0.0, worst = 0.0, force_scale = 0.0, force_worst = 0.0;
     for (const auto& line : result.sweeps.front().transient_series) {
@@ -238,7 +238,7 @@ fraction = 1.0
 }
 
 /// The text of the ConfigException loading `text` throws, or a failure.
-std::string config_error(const std::string& text) {
+std::string transient_config_error(const std::string& text) {
     try {
         (void)load_campaign_config_text(text, "transient.toml");
     } catch (const config::ConfigException& e) {
@@ -251,7 +251,7 @@ std::string config_error(const std::string& text) {
 TEST(TransientRun, WithoutAFixedDriveOrAFrequencyItIsAConfigError) {
     std::string text = kSdof;
     text.replace(text.find("frequency_hz = 80.0\n"), 20, "");
-    std::string message = config_error(text);
+    std::string message = transient_config_error(text);
     EXPECT_NE(message.find("campaign.transient.frequency_hz"), std::string::npos) << message;
     EXPECT_NE(message.find("is required"), std::string::npos) << message;
 
@@ -259,7 +259,7 @@ TEST(TransientRun, WithoutAFixedDriveOrAFrequencyItIsAConfigError) {
     text.replace(text.find("kind = \"fixed\"\namplitudes = [0.5]\n"), 34, "");
     text.replace(text.find("name = \"from-rest\"\n"), 19,
                  "name = \"from-rest\"\nlevels_g = [1.0]\n");
-    message = config_error(text);
+    message = transient_config_error(text);
     EXPECT_NE(message.find("campaign.transient.duration_s"), std::string::npos) << message;
     EXPECT_NE(message.find("needs campaign.drive.kind = \"fixed\""), std::string::npos) << message;
 }

@@ -12,7 +12,7 @@
 namespace sb::config::test {
 namespace {
 
-constexpr const char* kText =
+constexpr const char* kWrittenText =
     "length_m = 2.0\ncount = 2\nstiffness = 3e5\ncolour = \"blue\"\nblue_only = 4.0\nlevels = "
     "[1.0, 2.0]\n"
     "names = [\"a \\\"quoted\\\" name\", \"tab\\there\"]\n[inner]\nalpha = 4.0\n"
@@ -27,7 +27,7 @@ Model load(const std::string& text) {
 }
 
 TEST(ConfigWrite, TheWrittenTomlReadsBackToTheSameModelAndText) {
-    const Model m = load(kText);
+    const Model m = load(kWrittenText);
     const std::string written = write_toml(model_schema(), &m, "# header");
     const Model again = load(written);
     EXPECT_EQ(write_toml(model_schema(), &again, "# header"), written);
@@ -70,7 +70,7 @@ TEST(ConfigWrite, TheCanonicalTextIsSortedAndIndependentOfOrderCommentsAndLayout
 }
 
 TEST(ConfigWrite, EveryValueIsPartOfTheHash) {
-    const Model base = load(kText);
+    const Model base = load(kWrittenText);
     const std::string hash = identity_hash(model_schema(), &base);
     for (const auto& [path, value] : std::vector<std::pair<std::string, std::string>>{
              {"length_m", "2.0000000000000004"},

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 
 #include "core/units.hpp"
@@ -258,11 +259,42 @@ TEST(Settle, StiffHookeContactsSettleAtAThreeAndAHalfthOfTheShortestContact) {
     // a wall four times stiffer: m* = m on 4k, 1/sqrt(2) of the pair's
     o.contact.wall_normal_stiffness = 4.0 * o.contact.normal_stiffness;
     EXPECT_NEAR(settling_step_s(o, bed, so), pair / std::sqrt(2.0) / 3.5, 1e-12 * pair);
-    // a softer contact keeps the given step; so do Hertz contacts
+    // a softer contact keeps the given step
     o = settle_options_for_test();  // 1e4 N/m: the pair contact lasts 1.7e-4 s
     EXPECT_EQ(settling_step_s(o, bed, so), so.dt_s);
-    o = stiff_bed_options();
+}
+
+/// Johnson's Hertz impact duration 2.87 (m*^2 / (R* E*^2 v))^{1/5} (Contact Mechanics, 1985,
+/// §11.4), an expression of its own beside dem::hertz_contact_time's; 2.87 is rounded (2.868).
+double johnson_contact_time(double m_eff, double r_star, double e_star, double v) {
+    return 2.868 * std::pow(m_eff * m_eff / (r_star * e_star * e_star * v), 0.2);
+}
+
+TEST(Settle, SteelHertzContactsSettleAtAThreeAndAHalfthOfTheContactOfAFallAcrossTheEnclosure) {
+    SolverOptions o;
+    o.particles.count = 120;
     o.contact.normal = NormalLaw::hertz;
+    o.contact.normal_stiffness = 0.0;  // from the materials: steel on steel
+    const ParticleSet bed = fill_random(o, 3);
+    SettleOptions so;
+    so.dt_s = 1e-5;
+    const double m = sphere_mass_kg(o), r = 0.5 * o.particles.diameter_m;
+    const double e_star = 210e9 / (2.0 * (1.0 - 0.3 * 0.3));
+    // the fastest impact of settling: a fall across the 25 mm height, the cylinder's largest
+    // extent (its diameter is 19 mm)
+    const double v = std::sqrt(2.0 * kStandardGravity * 25e-3);
+    const double pair = johnson_contact_time(0.5 * m, 0.5 * r, e_star, v);
+    const double wall = johnson_contact_time(m, r, e_star, v);
+    ASSERT_LT(pair, wall);  // R*^{-1/5} m*^{2/5}: the pair's is shorter
+    EXPECT_NEAR(settling_step_s(o, bed, so), pair / 3.5, 2e-3 * pair / 3.5);
+    EXPECT_LT(settling_step_s(o, bed, so), 0.3 * so.dt_s);  // about 2.7 us: dt_s would not do
+    // a wall of a much stiffer material: its contact, half of E* on the wall's side, is shorter
+    o.contact.wall_material.youngs_modulus_pa = 1e15;
+    const double hard_wall = johnson_contact_time(m, r, 210e9 / (1.0 - 0.3 * 0.3), v);
+    ASSERT_LT(hard_wall, pair);
+    EXPECT_NEAR(settling_step_s(o, bed, so), hard_wall / 3.5, 2e-3 * hard_wall / 3.5);
+    // a given, soft Hertz constant keeps the given step
+    o.contact.normal_stiffness = 1e6;  // N/m^1.5: the pair contact lasts about 3 ms
     EXPECT_EQ(settling_step_s(o, bed, so), so.dt_s);
 }
 
@@ -621,6 +653,50 @@ TEST(ChooseContact, AScatterSizesTheStiffnessAndTimeStepForTheLargestSphereItCan
     const ExcitationContact chosen = c.choose(NormalLaw::hooke, 0.8, std::nullopt);
     EXPECT_EQ(chosen.stiffness, expected.stiffness);
     EXPECT_EQ(chosen.time_step_s, expected.time_step_s);
+}
+
+TEST(HertzConstant, IsFourThirdsOfTheEffectiveModulusTimesTheRootOfTheEffectiveRadius) {
+    Material steel;  // 210 GPa, 0.3
+    Material glass;
+    glass.youngs_modulus_pa = 63e9;
+    glass.poisson_ratio = 0.22;
+    const double r = 1.5e-3;
+    // two steel spheres: E* = E / (2 (1 - nu^2)), R* = r / 2
+    EXPECT_NEAR(hertz_constant(steel, r, steel, r),
+                4.0 / 3.0 * 210e9 / (2.0 * 0.91) * std::sqrt(0.75e-3), 1e-12 * 4.2e9);
+    // a steel sphere on a flat glass wall: R* = r
+    const double e_star = 1.0 / (0.91 / 210e9 + (1.0 - 0.22 * 0.22) / 63e9);
+    const double k = 4.0 / 3.0 * e_star * std::sqrt(r);
+    EXPECT_NEAR(hertz_constant(steel, r, glass, std::numeric_limits<double>::infinity()), k,
+                1e-12 * k);
+    // unequal spheres: R* = r_a r_b / (r_a + r_b), symmetric
+    EXPECT_DOUBLE_EQ(hertz_constant(steel, 1e-3, glass, 3e-3),
+                     hertz_constant(glass, 3e-3, steel, 1e-3));
+}
+
+TEST(MaterialsContact, TheStepIsTheFractionOfTheShorterHertzContactOfTheMaterialsAtTheImpact) {
+    const ExcitationCase c;  // steel spheres of 2 and 4 mm, 2 g RMS at 120 Hz, 25 mm high
+    const Material steel;
+    const ExcitationContact chosen =
+        materials_contact(c.particles, c.enclosure, steel, c.fraction, c.peak_m_s2, c.frequency_hz);
+    EXPECT_EQ(chosen.stiffness, 0.0);  // the solver takes each pair's from the materials
+    EXPECT_NEAR(chosen.impact_speed_m_s, c.impact_speed_m_s(), 1e-12 * c.impact_speed_m_s());
+    const double m = c.largest_mass_kg(), r = 2e-3, v = c.impact_speed_m_s();
+    const double e_star = 210e9 / (2.0 * 0.91);
+    const double pair = johnson_contact_time(0.5 * m, 0.5 * r, e_star, v);
+    EXPECT_NEAR(chosen.pair_contact_time_s, pair, 2e-3 * pair);
+    EXPECT_NEAR(chosen.time_step_s, c.fraction * pair, 2e-3 * c.fraction * pair);
+    EXPECT_NE(chosen.log.find("Hertz from the materials"), std::string::npos) << chosen.log;
+    // a wall of tungsten carbide (600 GPa, 0.22) shortens the wall contact below the pair's
+    Material carbide;
+    carbide.youngs_modulus_pa = 600e9;
+    carbide.poisson_ratio = 0.22;
+    const double wall = johnson_contact_time(m, r, 1.0 / (0.91 / 210e9 + 0.9516 / 600e9), v);
+    ASSERT_LT(wall, pair);
+    const ExcitationContact hard = materials_contact(c.particles, c.enclosure, carbide, c.fraction,
+                                                     c.peak_m_s2, c.frequency_hz);
+    EXPECT_NEAR(hard.time_step_s, c.fraction * wall, 2e-3 * c.fraction * wall);
+    EXPECT_NEAR(hard.pair_contact_time_s, pair, 2e-3 * pair);
 }
 
 TEST(SolverOptions, RodsMustClearTheLargestScatteredSphere) {

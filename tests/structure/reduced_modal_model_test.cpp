@@ -35,7 +35,7 @@ constexpr double kNewmarkEstimateFactor = 1.5;
 constexpr int kNewmarkSteps = 1000;    // steps per period
 constexpr int kNewmarkPeriods = 10;    // periods run from rest
 constexpr double kOnsetPeriods = 3.0;  // smooth rise of the force (response_helpers.hpp)
-constexpr int kModes = 8;
+constexpr int kReducedModes = 8;
 constexpr double kForceN = 0.1;
 
 /// Complex amplitude of the fundamental of the damper acceleration over the next `periods`
@@ -68,7 +68,7 @@ class Paper000Response : public ::testing::Test {
     void SetUp() override {
         spec_ = testing::paper000_loaded();
         model_ = build_linear_model(spec_, {});
-        basis_ = compute_modes(model_, spec_.damping, kModes);
+        basis_ = compute_modes(model_, spec_.damping, kReducedModes);
         f1_ = basis_.modes[0].frequency_hz;
         zeta1_ = basis_.modes[0].damping_ratio;
     }
@@ -129,7 +129,7 @@ TEST_F(Paper000Response, HugeStepStaysBoundedAndSettlesOnTheStaticDeflection) {
     const auto shapes = point_shapes(model_, basis_, "damper");
     const auto load = point_shapes(model_, basis_, "shaker");
     double expected = 0.0;
-    for (int r = 0; r < kModes; ++r) {
+    for (int r = 0; r < kReducedModes; ++r) {
         const double w = kTwoPi * basis_.modes[static_cast<std::size_t>(r)].frequency_hz;
         expected += shapes(2, r) * load(2, r) * kForceN / (w * w);
     }
@@ -141,7 +141,7 @@ TEST(ReducedModalModelBase, CantileverOnAMovingRootFollowsItsBaseQuasiStatically
     spec.excitation.kind = ExcitationSpec::Kind::base;
     spec.excitation.support = "root";
     const LinearModel model = build_linear_model(spec, {});
-    const ModalBasis basis = compute_modes(model, spec.damping, kModes);
+    const ModalBasis basis = compute_modes(model, spec.damping, kReducedModes);
     // Well below the first mode the absolute acceleration approaches the base acceleration;
     // analytic: transmissibility 1 + sum_r Gamma_r phi_r W^2 / (w_r^2 - W^2 + ...).
     const double f = 0.5;
@@ -160,7 +160,7 @@ TEST(ReducedModalModelBase, CantileverOnAMovingRootFollowsItsBaseQuasiStatically
     const Eigen::VectorXd gamma = basis.shapes.transpose() * model.mass() * *model.base_influence();
     const auto phi = point_shapes(model, basis, "damper");
     std::complex<double> expected = 1.0;
-    for (int r = 0; r < kModes; ++r) {
+    for (int r = 0; r < kReducedModes; ++r) {
         const double wr = kTwoPi * basis.modes[static_cast<std::size_t>(r)].frequency_hz;
         const double z = basis.modes[static_cast<std::size_t>(r)].damping_ratio;
         expected += phi(2, r) * gamma(r) * w * w / (wr * wr - w * w + 2i * z * wr * w);

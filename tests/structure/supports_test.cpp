@@ -19,17 +19,17 @@ using testing::bending_frequencies;
 using testing::euler_bernoulli_hz;
 using testing::support;
 
-constexpr int kAxisZ = 2;
-constexpr int kModes = 30;  // enough to hold three weak-bending modes among the others
+constexpr int kSupportAxisZ = 2;
+constexpr int kSupportModes = 30;  // enough to hold three weak-bending modes among the others
 // Cubic elements, 40 of them: the third mode's discretisation error is below 1e-6 (8e-7
 // measured) and the roots are solved to round-off; 1e-5 is a hundredth of the 0.1 %.
 constexpr double kEquationTolerance = 1e-5;
 // Newmark against the reduced model: factor on the first-order error estimate, for its
 // second-order terms and the modes the reduced model leaves out (response_helpers.hpp).
-constexpr double kNewmarkEstimateFactor = 1.5;
+constexpr double kSupportNewmarkFactor = 1.5;
 
 /// The shared steel strip (E I = 87.5 N m^2 in z) with a tip and a middle point.
-BeamSpec steel_strip() {
+BeamSpec supported_strip() {
     BeamSpec b = testing::steel_strip();
     b.points = {NamedPoint{"tip", 1.0}, NamedPoint{"middle", 0.5}};
     return b;
@@ -50,7 +50,8 @@ Support elastic(const std::string& name, double x_m, const Eigen::Vector3d& tran
 
 std::vector<double> z_bending_hz(const BeamSpec& beam) {
     const LinearModel model = build_beam_model(beam, ExcitationSpec{});
-    return bending_frequencies(model, compute_modes(model, DampingSpec{}, kModes), kAxisZ);
+    return bending_frequencies(model, compute_modes(model, DampingSpec{}, kSupportModes),
+                               kSupportAxisZ);
 }
 
 void expect_roots(const BeamSpec& beam, const std::vector<double>& beta_l) {
@@ -68,9 +69,9 @@ TEST(ElasticSupport, VeryStiffSpringsReproduceTheClampedFrequencies) {
     // the frequency equations below shift f by -2/R - 2 (beta L)^2/T, at most 3.3e-6 for the
     // third mode; 1e-5 leaves room for the round-off of the stiff springs in the eigensolver.
     constexpr double kStiffSpringTolerance = 1e-5;
-    BeamSpec clamped = steel_strip();
+    BeamSpec clamped = supported_strip();
     clamped.supports = {support("root", 0.0, SupportKind::clamped)};
-    BeamSpec sprung = steel_strip();
+    BeamSpec sprung = supported_strip();
     const double ei = ei_z(sprung);
     sprung.supports = {elastic("root", 0.0, Eigen::Vector3d::Constant(1e8 * ei),
                                Eigen::Vector3d::Constant(1e6 * ei))};
@@ -87,7 +88,7 @@ TEST(ElasticSupport, RotationalRootSpringMatchesTheSpringHingedCantileverEquatio
     // A pin and a rotational spring at the root: R = k L/(E I) = 10, between the pinned-free
     // (R = 0) and clamped-free (R = infinity) cantilevers.
     constexpr double kR = 10.0;
-    BeamSpec b = steel_strip();
+    BeamSpec b = supported_strip();
     const double k = kR * ei_z(b) / b.length_m;
     b.supports = {support("pin", 0.0, SupportKind::pinned),
                   elastic("spring", 0.0, Eigen::Vector3d::Zero(), {0.0, k, 1e3 * k})};
@@ -104,7 +105,7 @@ TEST(ElasticSupport, TranslationalAndRotationalRootSpringsMatchTheElasticCantile
     // of the other directions only hold the axial, lateral and torsional motions.
     constexpr double kT = 50.0;
     constexpr double kR = 10.0;
-    BeamSpec b = steel_strip();
+    BeamSpec b = supported_strip();
     const double ei = ei_z(b);
     const double kz = kT * ei / std::pow(b.length_m, 3);
     const double ky = kR * ei / b.length_m;
@@ -118,7 +119,7 @@ TEST(ElasticSupport, TranslationalAndRotationalRootSpringsMatchTheElasticCantile
 /// The elastically supported strip of the test above, driven through its support along z.
 StructureSpec strip_on_moving_springs() {
     StructureSpec spec;
-    spec.beam = steel_strip();
+    spec.beam = supported_strip();
     const double ei = ei_z(spec.beam);
     const double kz = 50.0 * ei;
     const double ky = 10.0 * ei;
@@ -148,7 +149,7 @@ void expect_newmark_follows_reduced_under_base_motion(const StructureSpec& spec,
                                                       const std::string& point, int modes) {
     constexpr int kSteps = 1000;  // per period
     constexpr int kPeriods = 10;
-    constexpr double kOnsetPeriods = 3.0;
+    constexpr double kRisePeriods = 3.0;
     constexpr double kBaseDisplacementM = 1e-4;
     const LinearModel model = build_linear_model(spec, {});
     const ModalBasis basis = compute_modes(model, spec.damping, modes);
@@ -157,7 +158,7 @@ void expect_newmark_follows_reduced_under_base_motion(const StructureSpec& spec,
     for (const int k : {-1, 0, 1}) {
         const double f = f1 * (1.0 + k * zeta);
         const double h = 1.0 / (f * kSteps);
-        const testing::SmoothSine base{kBaseDisplacementM, kTwoPi * f, kOnsetPeriods / f};
+        const testing::SmoothSine base{kBaseDisplacementM, kTwoPi * f, kRisePeriods / f};
         ReducedModalModel reduced(model, basis, h);
         NewmarkIntegrator full(model, basis, spec.damping, h);
         const auto diff = testing::run_side_by_side(
@@ -166,7 +167,7 @@ void expect_newmark_follows_reduced_under_base_motion(const StructureSpec& spec,
                 sim.set_base_motion(base.value(t), base.rate(t), base.second_rate(t));
             });
         const double tolerance =
-            kNewmarkEstimateFactor * testing::newmark_error_estimate(f, f1, zeta, h, kPeriods);
+            kSupportNewmarkFactor * testing::newmark_error_estimate(f, f1, zeta, h, kPeriods);
         EXPECT_LT(diff.displacement, tolerance) << "k = " << k;
         EXPECT_LT(diff.acceleration, tolerance) << "k = " << k;
     }
