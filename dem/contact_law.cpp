@@ -121,6 +121,11 @@ double hertz_restitution_from_alpha(double alpha) {
     return -v;
 }
 
+double effective_modulus_pa(const Material& a, const Material& b) {
+    return 1.0 / ((1.0 - a.poisson_ratio * a.poisson_ratio) / a.youngs_modulus_pa +
+                  (1.0 - b.poisson_ratio * b.poisson_ratio) / b.youngs_modulus_pa);
+}
+
 double hertz_equivalent_radius(double r_x, double r_y) {
     const double r_large = std::max(r_x, r_y), r_small = std::min(r_x, r_y);
     const double ratio = r_large / r_small;  // = B / A >= 1

@@ -295,6 +295,10 @@ ContactLaw make_contact_law(const ContactOptions& options);
 /// Solved by bisection at set-up (never per contact).
 double hertz_equivalent_radius(double r_x, double r_y);
 
+/// Hertz effective modulus E* = 1 / ((1 - nu_a^2)/E_a + (1 - nu_b^2)/E_b) of two materials [Pa]
+/// (Johnson, Contact Mechanics, 1985, §4.2).
+double effective_modulus_pa(const Material& a, const Material& b);
+
 /// Restitution of the linear spring-dashpot with damping ratio zeta and no tensile force.
 double linear_restitution_from_zeta(double zeta);
 /// zeta of the linear dashpot giving restitution e with no tensile force (inverts the closed

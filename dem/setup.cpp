@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "core/significant_text.hpp"
+#include "dem/contact_law.hpp"
 
 namespace sb::dem {
 
@@ -510,10 +511,8 @@ double hertz_contact_time(double m_eff, double k, double v) {
 }
 
 double hertz_constant(const Material& a, double r_a_m, const Material& b, double r_b_m) {
-    const double e_star = 1.0 / ((1.0 - a.poisson_ratio * a.poisson_ratio) / a.youngs_modulus_pa +
-                                 (1.0 - b.poisson_ratio * b.poisson_ratio) / b.youngs_modulus_pa);
     const double r_star = std::isinf(r_b_m) ? r_a_m : r_a_m * r_b_m / (r_a_m + r_b_m);
-    return 4.0 / 3.0 * e_star * std::sqrt(r_star);
+    return 4.0 / 3.0 * effective_modulus_pa(a, b) * std::sqrt(r_star);
 }
 
 double hooke_contact_time(double m_eff, double k, double e) {
@@ -570,6 +569,25 @@ std::string describe(const AutoStiffness& a, NormalLaw law) {
     return out.str();
 }
 
+namespace {
+/// auto_stiffness()'s input for the largest spheres at an excitation (peak acceleration, its
+/// frequency, the enclosure height as the free flight).
+AutoStiffnessInput excitation_input(const ParticleOptions& particles,
+                                    const EnclosureOptions& enclosure, NormalLaw law,
+                                    double time_step_fraction, double peak_acceleration_m_s2,
+                                    double frequency_hz) {
+    AutoStiffnessInput in;
+    in.law = law;
+    in.particle_diameter_m = particles.largest_diameter_m();
+    in.density_kg_m3 = particles.material.density_kg_m3;
+    in.level_m_s2 = peak_acceleration_m_s2;
+    in.frequency_hz = frequency_hz;
+    in.gap_m = enclosure.height_m;
+    in.time_step_fraction = time_step_fraction;
+    return in;
+}
+}  // namespace
+
 ExcitationContact choose_contact(const ParticleOptions& particles,
                                  const EnclosureOptions& enclosure, NormalLaw law,
                                  double restitution, std::optional<double> given_stiffness,
@@ -579,16 +597,10 @@ ExcitationContact choose_contact(const ParticleOptions& particles,
     // contact; the time step follows from the contact of two of them.
     const double d = particles.largest_diameter_m();
     const double mass = particles.material.density_kg_m3 * kPi * d * d * d / 6.0;
-    AutoStiffnessInput in;
-    in.law = law;
-    in.particle_diameter_m = d;
-    in.density_kg_m3 = particles.material.density_kg_m3;
+    AutoStiffnessInput in = excitation_input(particles, enclosure, law, time_step_fraction,
+                                             peak_acceleration_m_s2, frequency_hz);
     in.max_overlap_fraction = max_overlap_fraction;
-    in.level_m_s2 = peak_acceleration_m_s2;
-    in.frequency_hz = frequency_hz;
-    in.gap_m = enclosure.height_m;
     in.restitution = restitution;
-    in.time_step_fraction = time_step_fraction;
     ExcitationContact out;
     // A given Hooke stiffness needs no excitation (the impact speed is then only reported
     // when there is one); the rest sizes from it.
@@ -623,17 +635,12 @@ ExcitationContact materials_contact(const ParticleOptions& particles,
                                     double peak_acceleration_m_s2, double frequency_hz) {
     const double d = particles.largest_diameter_m();
     const double mass = particles.material.density_kg_m3 * kPi * d * d * d / 6.0;
-    AutoStiffnessInput in;
-    in.law = NormalLaw::hertz;
-    in.particle_diameter_m = d;
-    in.density_kg_m3 = particles.material.density_kg_m3;
-    in.level_m_s2 = peak_acceleration_m_s2;
-    in.frequency_hz = frequency_hz;
-    in.gap_m = enclosure.height_m;
-    in.time_step_fraction = time_step_fraction;
     // auto_stiffness() estimates the impact speed (and checks the inputs); its stiffness,
     // sized from an overlap, is not used.
-    const double speed = auto_stiffness(in).impact_speed_m_s;
+    const double speed =
+        auto_stiffness(excitation_input(particles, enclosure, NormalLaw::hertz, time_step_fraction,
+                                        peak_acceleration_m_s2, frequency_hz))
+            .impact_speed_m_s;
     const Material& pm = particles.material;
     const double k_pair = hertz_constant(pm, 0.5 * d, pm, 0.5 * d);
     const double k_wall =

@@ -103,10 +103,6 @@ Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
     const Material& pm = options_.particles.material;
     const Material& wm = c.wall_material;
     const Material& rm = c.rod_material ? *c.rod_material : wm;
-    auto e_star = [](const Material& a, const Material& b) {
-        return 1.0 / ((1.0 - a.poisson_ratio * a.poisson_ratio) / a.youngs_modulus_pa +
-                      (1.0 - b.poisson_ratio * b.poisson_ratio) / b.youngs_modulus_pa);
-    };
     const PairProperties* props[3] = {&c.particle_particle, &c.particle_wall,
                                       c.particle_rod ? &*c.particle_rod : &c.particle_wall};
     const Material* other[3] = {&pm, &wm, &rm};
@@ -116,7 +112,7 @@ Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
         p.mu_r = props[k]->rolling_friction;
         p.kt_ratio = c.tangential_stiffness_ratio;
         p.slip_reg = c.slip_regularisation_m_s;
-        p.e_star_sqrt_factor = 4.0 / 3.0 * e_star(pm, *other[k]);
+        p.e_star_sqrt_factor = 4.0 / 3.0 * effective_modulus_pa(pm, *other[k]);
         p.k_n = c.normal_stiffness;
         if (k >= 1 && c.normal == NormalLaw::hooke && c.wall_normal_stiffness > 0.0) {
             p.k_n = c.wall_normal_stiffness;
