@@ -47,21 +47,51 @@ dem::PairProperties ContactSpec::particle_wall() const {
     return wall;
 }
 
+namespace {
+
+/// The wall's coefficients with those given in their place (the rods', the lateral
+/// surface's); absent when none is given, so that the DEM uses the wall's own.
+std::optional<dem::PairProperties> wall_pair_but(const dem::PairProperties& wall,
+                                                 std::optional<double> restitution,
+                                                 std::optional<double> sliding_friction,
+                                                 std::optional<double> rolling_friction) {
+    if (!restitution && !sliding_friction && !rolling_friction) return std::nullopt;
+    dem::PairProperties own = wall;
+    own.restitution = restitution.value_or(own.restitution);
+    own.sliding_friction = sliding_friction.value_or(own.sliding_friction);
+    own.rolling_friction = rolling_friction.value_or(own.rolling_friction);
+    return own;
+}
+
+/// The wall's material with the moduli given in its place; absent when none is given.
+std::optional<dem::Material> wall_material_but(const dem::Material& wall,
+                                               std::optional<double> youngs_modulus_pa,
+                                               std::optional<double> poisson_ratio) {
+    if (!youngs_modulus_pa && !poisson_ratio) return std::nullopt;
+    dem::Material own = wall;
+    own.youngs_modulus_pa = youngs_modulus_pa.value_or(own.youngs_modulus_pa);
+    own.poisson_ratio = poisson_ratio.value_or(own.poisson_ratio);
+    return own;
+}
+
+}  // namespace
+
 std::optional<dem::PairProperties> ContactSpec::particle_rod() const {
-    if (!rod_restitution && !rod_sliding_friction && !rod_rolling_friction) return std::nullopt;
-    dem::PairProperties rod = particle_wall();
-    rod.restitution = rod_restitution.value_or(rod.restitution);
-    rod.sliding_friction = rod_sliding_friction.value_or(rod.sliding_friction);
-    rod.rolling_friction = rod_rolling_friction.value_or(rod.rolling_friction);
-    return rod;
+    return wall_pair_but(particle_wall(), rod_restitution, rod_sliding_friction,
+                         rod_rolling_friction);
 }
 
 std::optional<dem::Material> ContactSpec::rod_material() const {
-    if (!rod_youngs_modulus_pa && !rod_poisson_ratio) return std::nullopt;
-    dem::Material rod = wall_material;
-    rod.youngs_modulus_pa = rod_youngs_modulus_pa.value_or(rod.youngs_modulus_pa);
-    rod.poisson_ratio = rod_poisson_ratio.value_or(rod.poisson_ratio);
-    return rod;
+    return wall_material_but(wall_material, rod_youngs_modulus_pa, rod_poisson_ratio);
+}
+
+std::optional<dem::PairProperties> ContactSpec::particle_side() const {
+    return wall_pair_but(particle_wall(), side_restitution, side_sliding_friction,
+                         side_rolling_friction);
+}
+
+std::optional<dem::Material> ContactSpec::side_material() const {
+    return wall_material_but(wall_material, side_youngs_modulus_pa, side_poisson_ratio);
 }
 
 dem::ContactOptions ContactSpec::contact_options(double stiffness) const {
@@ -78,6 +108,8 @@ dem::ContactOptions ContactSpec::contact_options(double stiffness) const {
     c.wall_material = wall_material;
     c.particle_rod = particle_rod();
     c.rod_material = rod_material();
+    c.particle_side = particle_side();
+    c.side_material = side_material();
     return c;
 }
 
@@ -102,7 +134,7 @@ dem::ExcitationContact DamperSpec::excitation_contact(double peak_acceleration_m
     const double fraction = contact.time_step_fraction.value_or(dem::kTimeStepLadder[0]);
     const dem::ExcitationContact chosen =
         contact.stiffness_for == ContactSpec::StiffnessFor::materials
-            ? dem::materials_contact(particles, enclosure, contact.wall_material, fraction,
+            ? dem::materials_contact(particles, enclosure, contact.contact_options(0.0), fraction,
                                      peak_acceleration_m_s2, frequency_hz)
             : dem::choose_contact(particles, enclosure, contact.normal,
                                   contact.particle_particle.restitution, contact.normal_stiffness,

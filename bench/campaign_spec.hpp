@@ -92,6 +92,13 @@ struct ContactSpec {
     std::optional<double> rod_rolling_friction;
     std::optional<double> rod_youngs_modulus_pa;
     std::optional<double> rod_poisson_ratio;
+    /// Particle-side coefficients and material of the lateral surface (paper 000: a PMMA
+    /// tube between aluminium ends); absent: the wall's.
+    std::optional<double> side_restitution;
+    std::optional<double> side_sliding_friction;
+    std::optional<double> side_rolling_friction;
+    std::optional<double> side_youngs_modulus_pa;
+    std::optional<double> side_poisson_ratio;
     /// Automatic stiffness: largest overlap as a fraction of the diameter at the largest
     /// expected impact speed [-].
     double max_overlap_fraction = 0.01;
@@ -118,6 +125,10 @@ struct ContactSpec {
     [[nodiscard]] std::optional<dem::PairProperties> particle_rod() const;
     /// The rod material, when it differs from the wall's.
     [[nodiscard]] std::optional<dem::Material> rod_material() const;
+    /// The particle-side coefficients, when any differs from the wall's.
+    [[nodiscard]] std::optional<dem::PairProperties> particle_side() const;
+    /// The lateral surface's material, when it differs from the wall's.
+    [[nodiscard]] std::optional<dem::Material> side_material() const;
     /// The DEM contact options with `normal_stiffness` (the given or the chosen one).
     [[nodiscard]] dem::ContactOptions contact_options(double normal_stiffness) const;
 };

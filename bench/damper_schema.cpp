@@ -328,6 +328,44 @@ std::shared_ptr<const config::Table> contact_table() {
         .unit("-")
         .bound(Bound::closed(-0.999, 0.4999))
         .leaf("wall_material.poisson_ratio");
+    // The lateral surface may be of another material than the ends (paper 000: a PMMA tube
+    // between aluminium ends).
+    t.number(
+         "side_restitution", [](ContactSpec & c) -> auto& { return c.side_restitution; },
+         "particle-side coefficient of restitution (the lateral surface)")
+        .unit("-")
+        .bound(Bound::left_open(0.0, 1.0))
+        .follows("wall_restitution")
+        .leaf("particle_side.restitution");
+    t.number(
+         "side_sliding_friction", [](ContactSpec & c) -> auto& { return c.side_sliding_friction; },
+         "particle-side sliding friction coefficient (the lateral surface)")
+        .unit("-")
+        .bound(Bound::non_negative())
+        .follows("wall_sliding_friction")
+        .leaf("particle_side.sliding_friction");
+    t.number(
+         "side_rolling_friction", [](ContactSpec & c) -> auto& { return c.side_rolling_friction; },
+         "particle-side rolling friction coefficient (the lateral surface)")
+        .unit("-")
+        .bound(Bound::non_negative())
+        .follows("wall_rolling_friction")
+        .leaf("particle_side.rolling_friction");
+    t.number(
+         "side_youngs_modulus_pa",
+         [](ContactSpec & c) -> auto& { return c.side_youngs_modulus_pa; },
+         "lateral surface's Young's modulus (Hertz)")
+        .unit("Pa")
+        .bound(Bound::positive())
+        .follows("wall_youngs_modulus_pa")
+        .leaf("side_material.youngs_modulus_pa");
+    t.number(
+         "side_poisson_ratio", [](ContactSpec & c) -> auto& { return c.side_poisson_ratio; },
+         "lateral surface's Poisson ratio (Hertz)")
+        .unit("-")
+        .bound(Bound::closed(-0.999, 0.4999))
+        .follows("wall_poisson_ratio")
+        .leaf("side_material.poisson_ratio");
     // The obstacle grid's rods (enclosure.rods) may be of another material than the walls.
     t.number(
          "rod_restitution", [](ContactSpec & c) -> auto& { return c.rod_restitution; },

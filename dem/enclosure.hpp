@@ -77,6 +77,11 @@ class Enclosure {
     /// overlaps; n points from the wall into the cavity (towards the sphere centre).
     template <class Emit>
     void for_each_contact(const Eigen::Vector3d& xl, double r, Emit&& emit) const;
+    /// Wall ids below this one are the lateral surface (the walls along the axis: the
+    /// cylinder's side, the box's four faces), the rest the ends, plates and rods.
+    std::uint32_t lateral_wall_ids() const {
+        return options_.shape == EnclosureShape::cylinder ? 1u : 4u;
+    }
 
   private:
     template <class Emit>

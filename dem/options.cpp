@@ -104,6 +104,8 @@ Violations ContactOptions::validate() const {
     append_prefixed(out, "particle_particle", particle_particle.validate());
     append_prefixed(out, "particle_wall", particle_wall.validate());
     append_prefixed(out, "wall_material", wall_material.validate());
+    if (particle_side) append_prefixed(out, "particle_side", particle_side->validate());
+    if (side_material) append_prefixed(out, "side_material", side_material->validate());
     if (particle_rod) append_prefixed(out, "particle_rod", particle_rod->validate());
     if (rod_material) append_prefixed(out, "rod_material", rod_material->validate());
     return out;

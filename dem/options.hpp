@@ -82,6 +82,11 @@ struct ContactOptions {
     PairProperties particle_particle{};
     PairProperties particle_wall{};
     Material wall_material{};  ///< enclosure material (Hertz walls)
+    /// Particle-side coefficients where the lateral surface (the cylinder's mantle, the box's
+    /// four faces along its axis) is not of the ends' material (paper 000: a PMMA tube
+    /// between aluminium ends); absent: the particle-wall ones.
+    std::optional<PairProperties> particle_side;
+    std::optional<Material> side_material;  ///< lateral surface material; absent: wall_material
     /// Particle-rod coefficients of the obstacle grid, whose lattice need not be of the walls'
     /// material (paper 002's 3.3 g grid is a printed lattice, its shell metal); absent: the
     /// particle-wall ones.

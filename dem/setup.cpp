@@ -160,6 +160,17 @@ std::vector<double> class_radii(const ParticleOptions& o, std::uint64_t seed) {
     }
     return r;
 }
+
+/// The Hertz constant of a sphere on the stiffer of the enclosure's walls, the ends and the
+/// lateral surface, both taken flat (the cylinder's concave side is softer still).
+double stiffest_wall_constant(const Material& particle, double radius, const ContactOptions& c) {
+    const double flat = std::numeric_limits<double>::infinity();
+    const double ends = hertz_constant(particle, radius, c.wall_material, flat);
+    return c.side_material
+               ? std::max(ends, hertz_constant(particle, radius, *c.side_material, flat))
+               : ends;
+}
+
 }  // namespace
 
 std::vector<double> make_radii(const ParticleOptions& o, std::uint64_t seed) {
@@ -229,9 +240,7 @@ double settling_step_s(const SolverOptions& options, const ParticleSet& initial,
         const double k_pair =
             c.normal_stiffness > 0.0 ? c.normal_stiffness : hertz_constant(pm, r, pm, r);
         const double k_wall =
-            c.normal_stiffness > 0.0
-                ? c.normal_stiffness
-                : hertz_constant(pm, r, c.wall_material, std::numeric_limits<double>::infinity());
+            c.normal_stiffness > 0.0 ? c.normal_stiffness : stiffest_wall_constant(pm, r, c);
         const double contact_time = std::min(hertz_contact_time(0.5 * m, k_pair, fall_speed),
                                              hertz_contact_time(m, k_wall, fall_speed));
         return std::min(so.dt_s, contact_time / kSettleStepsPerContact);
@@ -354,8 +363,10 @@ ParticleSet pour(const SolverOptions& options, std::uint64_t seed, const SettleO
         bed.angular_velocities_rad_s.resize(now, Eigen::Vector3d::Zero());
         SolverOptions o = options;
         o.particles.count = static_cast<int>(now);
-        for (PairProperties* pair : {&o.contact.particle_particle, &o.contact.particle_wall,
-                                     o.contact.particle_rod ? &*o.contact.particle_rod : nullptr}) {
+        for (PairProperties* pair :
+             {&o.contact.particle_particle, &o.contact.particle_wall,
+              o.contact.particle_rod ? &*o.contact.particle_rod : nullptr,
+              o.contact.particle_side ? &*o.contact.particle_side : nullptr}) {
             if (pair == nullptr) continue;
             pair->sliding_friction *= po.friction_scale;
             pair->rolling_friction *= po.friction_scale;
@@ -631,7 +642,7 @@ ExcitationContact choose_contact(const ParticleOptions& particles,
 
 ExcitationContact materials_contact(const ParticleOptions& particles,
                                     const EnclosureOptions& enclosure,
-                                    const Material& wall_material, double time_step_fraction,
+                                    const ContactOptions& contact, double time_step_fraction,
                                     double peak_acceleration_m_s2, double frequency_hz) {
     const double d = particles.largest_diameter_m();
     const double mass = particles.material.density_kg_m3 * kPi * d * d * d / 6.0;
@@ -643,8 +654,7 @@ ExcitationContact materials_contact(const ParticleOptions& particles,
             .impact_speed_m_s;
     const Material& pm = particles.material;
     const double k_pair = hertz_constant(pm, 0.5 * d, pm, 0.5 * d);
-    const double k_wall =
-        hertz_constant(pm, 0.5 * d, wall_material, std::numeric_limits<double>::infinity());
+    const double k_wall = stiffest_wall_constant(pm, 0.5 * d, contact);
     const double pair_time = hertz_contact_time(0.5 * mass, k_pair, speed);
     const double wall_time = hertz_contact_time(mass, k_wall, speed);
     ExcitationContact out;

@@ -192,12 +192,13 @@ ExcitationContact choose_contact(const ParticleOptions& particles,
 /// The Hertz contact of the materials (no stiffness to choose: each pair's constant 4/3 E*
 /// sqrt(R*) from the Young's moduli and Poisson ratios, ExcitationContact::stiffness 0 as
 /// ContactOptions::normal_stiffness reads it) and its time step: time_step_fraction times the
-/// shorter contact of two of the largest spheres and of one against a flat wall of
-/// `wall_material`, at the largest impact speed choose_contact() estimates. Throws
+/// shorter contact of two of the largest spheres and of one against a flat wall of the
+/// stiffer of `contact`'s wall and side materials, at the largest impact speed
+/// choose_contact() estimates (the rest of `contact` is not read). Throws
 /// std::invalid_argument for inputs it cannot size.
 ExcitationContact materials_contact(const ParticleOptions& particles,
                                     const EnclosureOptions& enclosure,
-                                    const Material& wall_material, double time_step_fraction,
+                                    const ContactOptions& contact, double time_step_fraction,
                                     double peak_acceleration_m_s2, double frequency_hz);
 
 }  // namespace sb::dem

@@ -97,16 +97,19 @@ Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
     layers_up_ = enclosure.rotation.transpose() * (-options_.gravity_m_s2);
     layers_ = HorizontalLayers(enclosure_, layers_up_, options_.energy_layers);
 
-    // Pair coefficients: [0] particle-particle, [1] particle-wall, [2] particle-rod (the
-    // wall's unless the rods have their own).
+    // Pair coefficients: [0] particle-particle, [1] particle-wall, [2] particle-rod, [3]
+    // particle-side (the rods and the lateral surface the wall's unless they have their own).
     const auto& c = options_.contact;
     const Material& pm = options_.particles.material;
     const Material& wm = c.wall_material;
     const Material& rm = c.rod_material ? *c.rod_material : wm;
-    const PairProperties* props[3] = {&c.particle_particle, &c.particle_wall,
-                                      c.particle_rod ? &*c.particle_rod : &c.particle_wall};
-    const Material* other[3] = {&pm, &wm, &rm};
-    for (int k = 0; k < 3; ++k) {
+    const Material& sm = c.side_material ? *c.side_material : wm;
+    const PairProperties* props[4] = {&c.particle_particle, &c.particle_wall,
+                                      c.particle_rod ? &*c.particle_rod : &c.particle_wall,
+                                      c.particle_side ? &*c.particle_side : &c.particle_wall};
+    const Material* other[4] = {&pm, &wm, &rm, &sm};
+    side_walls_ = enclosure_.lateral_wall_ids();
+    for (int k = 0; k < 4; ++k) {
         PairCoefficients& p = coeff_[k];
         p.mu = props[k]->sliding_friction;
         p.mu_r = props[k]->rolling_friction;
@@ -642,6 +645,7 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
         const std::size_t base = i * wall_cap_;
         const PairCoefficients& wall_coefficients = coeff_[1];
         const PairCoefficients& rod_coefficients = coeff_[2];
+        const PairCoefficients& side_coefficients = coeff_[3];
         const std::uint32_t prev_count = prev_wall_count_[i];
         std::uint32_t prev = 0;
         enclosure_.for_each_contact(
@@ -683,8 +687,11 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
                 const double vn = vrel.dot(n);
                 k.delta_dot = -vn;
                 k.v_t = vrel - vn * n;
-                const LawForce r =
-                    law.evaluate(k, wall >= kRodBase ? rod_coefficients : wall_coefficients, hist);
+                const LawForce r = law.evaluate(k,
+                                                wall >= kRodBase     ? rod_coefficients
+                                                : wall < side_walls_ ? side_coefficients
+                                                                     : wall_coefficients,
+                                                hist);
                 const Eigen::Vector3d f = r.fn * n + r.ft;
                 const Eigen::Vector3d ti = bi.cross(r.ft) + r.mr;
                 wall_delta_[s] = delta;

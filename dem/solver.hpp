@@ -141,7 +141,8 @@ class Solver {
     /// solver was built with.
     const HorizontalLayers& layers() const { return layers_; }
     const SolverOptions& options() const { return options_; }
-    /// Pair coefficients after set-up (for logging): [0] particle-particle, [1] particle-wall.
+    /// Pair coefficients after set-up (for logging): [0] particle-particle, [1] particle-wall
+    /// (the ends), [2] particle-rod, [3] particle-side (the lateral surface).
     const PairCoefficients& coefficients(int which) const { return coeff_[which]; }
 
     /// Locks particles to the enclosure (frozen enclosure-frame positions) until release().
@@ -232,7 +233,10 @@ class Solver {
     SolverOptions options_;
     Enclosure enclosure_;
     ContactLaw law_;
-    PairCoefficients coeff_[3];  ///< particle-particle, particle-wall, particle-rod
+    /// particle-particle, particle-wall (the ends, plates), particle-rod, particle-side
+    PairCoefficients coeff_[4];
+    /// Enclosure::lateral_wall_ids(): the ids of the lateral surface are below it.
+    std::uint32_t side_walls_ = 1;
     EnclosureState enclosure_state_;
     HorizontalLayers layers_;
     Eigen::Vector3d layers_up_ = Eigen::Vector3d::Zero();  ///< what layers_ was built from

@@ -77,28 +77,57 @@ TEST(ConfigPaths, WallFrictionFollowsAParticleFrictionChangedAfterLoading) {
     EXPECT_EQ(config.campaign.dampers.front().contact.particle_wall().sliding_friction, 0.2);
 }
 
-TEST(ConfigPaths, RodsFollowTheWallsUntilGivenTheirOwnMaterial) {
+/// A part of the enclosure that may have its own coefficients and material: the obstacle
+/// grid's rods, the lateral surface.
+struct WallPart {
+    std::string prefix;  ///< of its contact keys: rod_, side_
+    std::optional<dem::PairProperties> dem::ContactOptions::*pair;
+    std::optional<dem::Material> dem::ContactOptions::*material;
+};
+
+class OwnWallPart : public ::testing::TestWithParam<WallPart> {};
+
+TEST_P(OwnWallPart, FollowsTheWallsUntilGivenItsOwnValues) {
+    const WallPart& part = GetParam();
+    const std::string key = "dampers.pd.contact." + part.prefix;
     CampaignConfig config = builtin();
     const auto& contact = config.campaign.dampers.front().contact;
-    EXPECT_FALSE(contact.particle_rod());  // the wall's coefficients serve the rods
-    EXPECT_FALSE(contact.rod_material());
+    // the wall's coefficients and material serve it
+    EXPECT_FALSE(contact.contact_options(1e4).*part.pair);
+    EXPECT_FALSE(contact.contact_options(1e4).*part.material);
     set_value_text(config, "dampers.pd.contact.wall_restitution", "0.7", "--set");
-    EXPECT_EQ(std::get<double>(get_value(config, "dampers.pd.contact.rod_restitution")), 0.7);
-    set_value_text(config, "dampers.pd.contact.rod_restitution", "0.4", "--set");
-    set_value_text(config, "dampers.pd.contact.rod_youngs_modulus_pa", "3e9", "--set");
+    set_value_text(config, "dampers.pd.contact.wall_youngs_modulus_pa", "70e9", "--set");
+    EXPECT_EQ(std::get<double>(get_value(config, key + "restitution")), 0.7);
+    EXPECT_EQ(std::get<double>(get_value(config, key + "youngs_modulus_pa")), 70e9);
+    set_value_text(config, key + "restitution", "0.4", "--set");
+    set_value_text(config, key + "youngs_modulus_pa", "3e9", "--set");
     const auto options = contact.contact_options(1e4);
-    ASSERT_TRUE(options.particle_rod);
-    EXPECT_EQ(options.particle_rod->restitution, 0.4);
+    const auto& pair = options.*part.pair;
+    const auto& material = options.*part.material;
+    ASSERT_TRUE(pair);
+    EXPECT_EQ(pair->restitution, 0.4);
     // What is not given follows the wall's.
-    EXPECT_EQ(options.particle_rod->sliding_friction, options.particle_wall.sliding_friction);
-    ASSERT_TRUE(options.rod_material);
-    EXPECT_EQ(options.rod_material->youngs_modulus_pa, 3e9);
-    EXPECT_EQ(options.rod_material->poisson_ratio, options.wall_material.poisson_ratio);
+    EXPECT_EQ(pair->sliding_friction, options.particle_wall.sliding_friction);
+    ASSERT_TRUE(material);
+    EXPECT_EQ(material->youngs_modulus_pa, 3e9);
+    EXPECT_EQ(material->poisson_ratio, options.wall_material.poisson_ratio);
     EXPECT_EQ(options.particle_wall.restitution, 0.7);
-    EXPECT_FALSE(errors_of([&] {
-                     set_value_text(config, "dampers.pd.contact.rod_restitution", "1.5", "--set");
-                 }).empty());
+    EXPECT_EQ(options.wall_material.youngs_modulus_pa, 70e9);
+    EXPECT_FALSE(
+        errors_of([&] { set_value_text(config, key + "restitution", "1.5", "--set"); }).empty());
+    EXPECT_FALSE(
+        errors_of([&] { set_value_text(config, key + "poisson_ratio", "0.6", "--set"); }).empty());
 }
+
+INSTANTIATE_TEST_SUITE_P(ConfigPaths, OwnWallPart,
+                         ::testing::Values(WallPart{"rod_", &dem::ContactOptions::particle_rod,
+                                                    &dem::ContactOptions::rod_material},
+                                           WallPart{"side_", &dem::ContactOptions::particle_side,
+                                                    &dem::ContactOptions::side_material}),
+                         [](const ::testing::TestParamInfo<WallPart>& param) {
+                             return param.param.prefix == "rod_" ? std::string("Rods")
+                                                                 : std::string("LateralSurface");
+                         });
 
 TEST(ConfigPaths, TheDiameterScatterIsAddressedByItsDottedPathWithinItsBound) {
     CampaignConfig config = builtin();

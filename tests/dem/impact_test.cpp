@@ -275,5 +275,45 @@ TEST(RodMaterial, ARodOfItsOwnMaterialRestitutesAndLastsAsItsOwnTheWallAsTheWall
     EXPECT_NEAR(wall.restitution, 0.9, kRestitutionTolerance * 0.9);
 }
 
+/// A lateral surface of its own material (paper 000: a PMMA tube between aluminium ends): a
+/// sphere striking a side face of the box restitutes with the side's coefficient and stays in
+/// contact for the Hertz time of PMMA on steel, one falling onto the bottom with the ends'
+/// coefficient and the Hertz time of aluminium.
+TEST(SideMaterial, TheLateralSurfaceRestitutesAndLastsAsItsOwnMaterialTheEndsAsTheWall) {
+    SolverOptions o = free_box_options(1, NormalLaw::hertz);
+    o.contact.damping = DampingLaw::hertz_dashpot;
+    o.contact.particle_wall.restitution = 0.9;
+    o.contact.wall_material.youngs_modulus_pa = 70e9;  // aluminium
+    o.contact.wall_material.poisson_ratio = 0.33;
+    o.contact.particle_side = o.contact.particle_wall;
+    o.contact.particle_side->restitution = 0.6;
+    o.contact.side_material = Material{};
+    o.contact.side_material->youngs_modulus_pa = 3e9;  // PMMA
+    o.contact.side_material->poisson_ratio = 0.35;
+    const Material steel = o.particles.material;
+    auto flat_contact_time = [&](double young, double nu) {
+        const double e_star =
+            1.0 / ((1.0 - steel.poisson_ratio * steel.poisson_ratio) / steel.youngs_modulus_pa +
+                   (1.0 - nu * nu) / young);
+        return hertz_contact_time(sphere_mass(), 4.0 / 3.0 * e_star * std::sqrt(kRadius), kSpeed);
+    };
+    const double pmma = flat_contact_time(3e9, 0.35), aluminium = flat_contact_time(70e9, 0.33);
+    ASSERT_GT(pmma, 3.0 * aluminium);
+    // The -x face, then the +x face: the side's restitution, a contact a little longer than
+    // the undamped Hertz time of PMMA (the dashpot lengthens it, by 6 % at e = 0.6).
+    for (const double direction : {-1.0, 1.0}) {
+        const ImpactResult side = launched_impact(
+            o, {direction * (0.05 - kRadius - 1e-6), 0.0, 52.5e-3}, direction, pmma / 400.0);
+        EXPECT_NEAR(side.restitution, 0.6, kRestitutionTolerance * 0.6) << direction;
+        EXPECT_GT(side.contact_time_s, pmma);
+        EXPECT_LT(side.contact_time_s, 1.15 * pmma);
+    }
+    // The bottom: the ends' restitution and aluminium's time.
+    const ImpactResult bottom = impact(o, true, kSpeed, aluminium / 400.0);
+    EXPECT_NEAR(bottom.restitution, 0.9, kRestitutionTolerance * 0.9);
+    EXPECT_GT(bottom.contact_time_s, aluminium);
+    EXPECT_LT(bottom.contact_time_s, 1.1 * aluminium);
+}
+
 }  // namespace
 }  // namespace sb::dem

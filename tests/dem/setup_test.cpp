@@ -674,11 +674,18 @@ TEST(HertzConstant, IsFourThirdsOfTheEffectiveModulusTimesTheRootOfTheEffectiveR
                      hertz_constant(glass, 3e-3, steel, 1e-3));
 }
 
+/// Contact options whose walls, ends and lateral surface, are all of `material`.
+ContactOptions walls_of(const Material& material) {
+    ContactOptions c;
+    c.wall_material = material;
+    return c;
+}
+
 TEST(MaterialsContact, TheStepIsTheFractionOfTheShorterHertzContactOfTheMaterialsAtTheImpact) {
     const ExcitationCase c;  // steel spheres of 2 and 4 mm, 2 g RMS at 120 Hz, 25 mm high
     const Material steel;
-    const ExcitationContact chosen =
-        materials_contact(c.particles, c.enclosure, steel, c.fraction, c.peak_m_s2, c.frequency_hz);
+    const ExcitationContact chosen = materials_contact(c.particles, c.enclosure, walls_of(steel),
+                                                       c.fraction, c.peak_m_s2, c.frequency_hz);
     EXPECT_EQ(chosen.stiffness, 0.0);  // the solver takes each pair's from the materials
     EXPECT_NEAR(chosen.impact_speed_m_s, c.impact_speed_m_s(), 1e-12 * c.impact_speed_m_s());
     const double m = c.largest_mass_kg(), r = 2e-3, v = c.impact_speed_m_s();
@@ -693,10 +700,24 @@ TEST(MaterialsContact, TheStepIsTheFractionOfTheShorterHertzContactOfTheMaterial
     carbide.poisson_ratio = 0.22;
     const double wall = johnson_contact_time(m, r, 1.0 / (0.91 / 210e9 + 0.9516 / 600e9), v);
     ASSERT_LT(wall, pair);
-    const ExcitationContact hard = materials_contact(c.particles, c.enclosure, carbide, c.fraction,
-                                                     c.peak_m_s2, c.frequency_hz);
+    const ExcitationContact hard = materials_contact(c.particles, c.enclosure, walls_of(carbide),
+                                                     c.fraction, c.peak_m_s2, c.frequency_hz);
     EXPECT_NEAR(hard.time_step_s, c.fraction * wall, 2e-3 * c.fraction * wall);
     EXPECT_NEAR(hard.pair_contact_time_s, pair, 2e-3 * pair);
+    // the same carbide as the lateral surface between ends of PMMA (3 GPa, 0.35): the
+    // stiffer wall, wherever it is, sets the step
+    ContactOptions tube = walls_of(Material{});
+    tube.wall_material.youngs_modulus_pa = 3e9;
+    tube.wall_material.poisson_ratio = 0.35;
+    tube.side_material = carbide;
+    const ExcitationContact side =
+        materials_contact(c.particles, c.enclosure, tube, c.fraction, c.peak_m_s2, c.frequency_hz);
+    EXPECT_NEAR(side.time_step_s, c.fraction * wall, 2e-3 * c.fraction * wall);
+    // and PMMA everywhere leaves the pair's contact the shorter
+    tube.side_material.reset();
+    const ExcitationContact soft =
+        materials_contact(c.particles, c.enclosure, tube, c.fraction, c.peak_m_s2, c.frequency_hz);
+    EXPECT_NEAR(soft.time_step_s, c.fraction * pair, 2e-3 * c.fraction * pair);
 }
 
 TEST(SolverOptions, RodsMustClearTheLargestScatteredSphere) {
