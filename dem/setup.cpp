@@ -653,20 +653,30 @@ ExcitationContact materials_contact(const ParticleOptions& particles,
                                         peak_acceleration_m_s2, frequency_hz))
             .impact_speed_m_s;
     const Material& pm = particles.material;
+    const double flat = std::numeric_limits<double>::infinity();
     const double k_pair = hertz_constant(pm, 0.5 * d, pm, 0.5 * d);
-    const double k_wall = stiffest_wall_constant(pm, 0.5 * d, contact);
+    const double k_wall = hertz_constant(pm, 0.5 * d, contact.wall_material, flat);
     const double pair_time = hertz_contact_time(0.5 * mass, k_pair, speed);
     const double wall_time = hertz_contact_time(mass, k_wall, speed);
     ExcitationContact out;
     out.stiffness = 0.0;
     out.impact_speed_m_s = speed;
     out.pair_contact_time_s = pair_time;
-    out.time_step_s = time_step_fraction * std::min(pair_time, wall_time);
-    out.stiffness_log = "Hertz from the materials: k " + significant_text(k_pair) +
-                        " N/m^1.5 particle-particle, " + significant_text(k_wall) +
-                        " N/m^1.5 particle-wall (impact speed " + significant_text(speed) +
-                        " m/s), contact time particle-particle " + significant_text(pair_time) +
+    double shortest = std::min(pair_time, wall_time);
+    std::string constants = significant_text(k_pair) + " N/m^1.5 particle-particle, " +
+                            significant_text(k_wall) + " N/m^1.5 particle-wall";
+    std::string times = "contact time particle-particle " + significant_text(pair_time) +
                         " s, particle-wall " + significant_text(wall_time) + " s";
+    if (contact.side_material) {  // a lateral surface of its own material, taken flat
+        const double k_side = hertz_constant(pm, 0.5 * d, *contact.side_material, flat);
+        const double side_time = hertz_contact_time(mass, k_side, speed);
+        shortest = std::min(shortest, side_time);
+        constants += ", " + significant_text(k_side) + " N/m^1.5 particle-side";
+        times += ", particle-side " + significant_text(side_time) + " s";
+    }
+    out.time_step_s = time_step_fraction * shortest;
+    out.stiffness_log = "Hertz from the materials: k " + constants + " (impact speed " +
+                        significant_text(speed) + " m/s), " + times;
     out.log = out.stiffness_log + ", time step " + significant_text(out.time_step_s) + " s";
     return out;
 }

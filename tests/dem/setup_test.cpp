@@ -713,6 +713,7 @@ TEST(MaterialsContact, TheStepIsTheFractionOfTheShorterHertzContactOfTheMaterial
     const ExcitationContact side =
         materials_contact(c.particles, c.enclosure, tube, c.fraction, c.peak_m_s2, c.frequency_hz);
     EXPECT_NEAR(side.time_step_s, c.fraction * wall, 2e-3 * c.fraction * wall);
+    EXPECT_NE(side.log.find("particle-side"), std::string::npos) << side.log;
     // and PMMA everywhere leaves the pair's contact the shorter
     tube.side_material.reset();
     const ExcitationContact soft =
