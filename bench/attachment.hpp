@@ -209,8 +209,8 @@ class MicroslipDashpot : public StatelessAttachment {
 };
 
 /// A hardening cubic spring from its point to the fixed frame (physics.cubic_spring;
-/// bench/physics_attachments.hpp): F = -k3 u^3 d with u = d . (x - x_rest). Stateless,
-/// explicit as the air-drag strip.
+/// bench/physics_attachments.hpp): F = -k3 u^3 d with u = d . (x - x_rest) at the step's end
+/// (x + v dt). Stateless.
 class CubicSpring : public StatelessAttachment {
   public:
     CubicSpring(const Eigen::Vector3d& direction, double stiffness_n_per_m3,
