@@ -172,8 +172,14 @@ std::shared_ptr<const config::Table> contact_table() {
                                 "Normal, damping, tangential and rolling pieces with their "
                                 "coefficients (see docs/dem.md).");
     t.choice(
-        "normal", [](ContactSpec & c) -> auto& { return c.normal; }, dem::kNormalLawNames,
-        "normal law");
+         "normal", [](ContactSpec & c) -> auto& { return c.normal; }, dem::kNormalLawNames,
+         "normal law")
+        .doc(
+            "normal law: `hooke`, a linear spring sized to bound the overlap (paper 000's "
+            "practice), or `hertz`, F = k delta^1.5, with `stiffness_for = \"materials\"` each "
+            "pair's k from the Young's moduli and Poisson ratios; the law moves paper 000's "
+            "damping by up to a third at 1-2 g, docs/validation.md says where and why the "
+            "default is the linear one");
     t.choice(
          "damping", [](ContactSpec & c) -> auto& { return c.damping; }, dem::kDampingLawNames,
          "normal damping")
