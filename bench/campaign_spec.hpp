@@ -119,6 +119,11 @@ struct ContactSpec {
         {StiffnessFor::materials, "materials"}};
     StiffnessFor stiffness_for = StiffnessFor::campaign;
 
+    /// The level [g] an automatic contact is sized for: the sweep's own with stiffness_for =
+    /// "level", else the campaign's largest.
+    [[nodiscard]] double sized_for_g(double level_g, double largest_level_g) const {
+        return stiffness_for == StiffnessFor::level ? level_g : largest_level_g;
+    }
     /// The particle-wall coefficients in use.
     [[nodiscard]] dem::PairProperties particle_wall() const;
     /// The particle-rod coefficients, when any differs from the wall's.

@@ -227,11 +227,9 @@ CharacterizationGrid plan_grid(const CampaignConfig& config, const CharacterizeO
             for (double level : levels) {
                 // One contact per level (or one for all): every filling runs the same law
                 // and step.
-                const double sized_for_g =
-                    damper->contact.stiffness_for != ContactSpec::StiffnessFor::level ? largest_g
-                                                                                      : level;
                 const dem::ExcitationContact contact = damper->excitation_contact(
-                    std::sqrt(2.0) * g_to_m_s2(sized_for_g), prepared.first_mode_hz);
+                    std::sqrt(2.0) * g_to_m_s2(damper->contact.sized_for_g(level, largest_g)),
+                    prepared.first_mode_hz);
                 for (int s = 0; s < options.seeds; ++s) {
                     CharacterizationGrid::Bed bed;
                     bed.arrangement = a;

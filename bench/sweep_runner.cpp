@@ -234,9 +234,7 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
         }
         const dem::ExcitationContact chosen = damper.excitation_contact(
             std::sqrt(2.0) *
-                g_to_m_s2(damper.contact.stiffness_for != ContactSpec::StiffnessFor::level
-                              ? task.stiffness_level_g
-                              : task.level_g),
+                g_to_m_s2(damper.contact.sized_for_g(task.level_g, task.stiffness_level_g)),
             prepared.first_mode_hz);
         dt_max = std::min(dt_max, chosen.time_step_s);
         out.settings.push_back(damper.name + ": " + chosen.log);

@@ -13,6 +13,8 @@
 #include <random>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "core/significant_text.hpp"
 #include "dem/contact_law.hpp"
@@ -161,14 +163,23 @@ std::vector<double> class_radii(const ParticleOptions& o, std::uint64_t seed) {
     return r;
 }
 
-/// The Hertz constant of a sphere on the stiffer of the enclosure's walls, the ends and the
-/// lateral surface, both taken flat (the cylinder's concave side is softer still).
+/// The enclosure's wall materials with their names in the run log: the ends' (the wall's),
+/// then the lateral surface's where it has its own.
+std::vector<std::pair<const char*, const Material*>> wall_materials(const ContactOptions& c) {
+    std::vector<std::pair<const char*, const Material*>> out{{"particle-wall", &c.wall_material}};
+    if (c.side_material) out.emplace_back("particle-side", &*c.side_material);
+    return out;
+}
+
+/// The Hertz constant of a sphere on the stiffest of the enclosure's walls, each taken flat
+/// (the cylinder's concave side is softer still).
 double stiffest_wall_constant(const Material& particle, double radius, const ContactOptions& c) {
-    const double flat = std::numeric_limits<double>::infinity();
-    const double ends = hertz_constant(particle, radius, c.wall_material, flat);
-    return c.side_material
-               ? std::max(ends, hertz_constant(particle, radius, *c.side_material, flat))
-               : ends;
+    double k = 0.0;
+    for (const auto& [name, material] : wall_materials(c)) {
+        k = std::max(k, hertz_constant(particle, radius, *material,
+                                       std::numeric_limits<double>::infinity()));
+    }
+    return k;
 }
 
 }  // namespace
@@ -653,26 +664,22 @@ ExcitationContact materials_contact(const ParticleOptions& particles,
                                         peak_acceleration_m_s2, frequency_hz))
             .impact_speed_m_s;
     const Material& pm = particles.material;
-    const double flat = std::numeric_limits<double>::infinity();
     const double k_pair = hertz_constant(pm, 0.5 * d, pm, 0.5 * d);
-    const double k_wall = hertz_constant(pm, 0.5 * d, contact.wall_material, flat);
     const double pair_time = hertz_contact_time(0.5 * mass, k_pair, speed);
-    const double wall_time = hertz_contact_time(mass, k_wall, speed);
     ExcitationContact out;
     out.stiffness = 0.0;
     out.impact_speed_m_s = speed;
     out.pair_contact_time_s = pair_time;
-    double shortest = std::min(pair_time, wall_time);
-    std::string constants = significant_text(k_pair) + " N/m^1.5 particle-particle, " +
-                            significant_text(k_wall) + " N/m^1.5 particle-wall";
-    std::string times = "contact time particle-particle " + significant_text(pair_time) +
-                        " s, particle-wall " + significant_text(wall_time) + " s";
-    if (contact.side_material) {  // a lateral surface of its own material, taken flat
-        const double k_side = hertz_constant(pm, 0.5 * d, *contact.side_material, flat);
-        const double side_time = hertz_contact_time(mass, k_side, speed);
-        shortest = std::min(shortest, side_time);
-        constants += ", " + significant_text(k_side) + " N/m^1.5 particle-side";
-        times += ", particle-side " + significant_text(side_time) + " s";
+    double shortest = pair_time;
+    std::string constants = significant_text(k_pair) + " N/m^1.5 particle-particle";
+    std::string times = "contact time particle-particle " + significant_text(pair_time) + " s";
+    for (const auto& [name, material] : wall_materials(contact)) {  // each taken flat
+        const double k =
+            hertz_constant(pm, 0.5 * d, *material, std::numeric_limits<double>::infinity());
+        const double time = hertz_contact_time(mass, k, speed);
+        shortest = std::min(shortest, time);
+        constants += ", " + significant_text(k) + " N/m^1.5 " + name;
+        times += ", " + std::string(name) + " " + significant_text(time) + " s";
     }
     out.time_step_s = time_step_fraction * shortest;
     out.stiffness_log = "Hertz from the materials: k " + constants + " (impact speed " +

@@ -108,7 +108,6 @@ Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
                                       c.particle_rod ? &*c.particle_rod : &c.particle_wall,
                                       c.particle_side ? &*c.particle_side : &c.particle_wall};
     const Material* other[4] = {&pm, &wm, &rm, &sm};
-    side_walls_ = enclosure_.lateral_wall_ids();
     for (int k = 0; k < 4; ++k) {
         PairCoefficients& p = coeff_[k];
         p.mu = props[k]->sliding_friction;
@@ -646,6 +645,7 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
         const PairCoefficients& wall_coefficients = coeff_[1];
         const PairCoefficients& rod_coefficients = coeff_[2];
         const PairCoefficients& side_coefficients = coeff_[3];
+        const std::uint32_t lateral_walls = enclosure_.lateral_wall_ids();
         const std::uint32_t prev_count = prev_wall_count_[i];
         std::uint32_t prev = 0;
         enclosure_.for_each_contact(
@@ -688,9 +688,9 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
                 k.delta_dot = -vn;
                 k.v_t = vrel - vn * n;
                 const LawForce r = law.evaluate(k,
-                                                wall >= kRodBase     ? rod_coefficients
-                                                : wall < side_walls_ ? side_coefficients
-                                                                     : wall_coefficients,
+                                                wall >= kRodBase       ? rod_coefficients
+                                                : wall < lateral_walls ? side_coefficients
+                                                                       : wall_coefficients,
                                                 hist);
                 const Eigen::Vector3d f = r.fn * n + r.ft;
                 const Eigen::Vector3d ti = bi.cross(r.ft) + r.mr;

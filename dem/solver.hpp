@@ -235,8 +235,6 @@ class Solver {
     ContactLaw law_;
     /// particle-particle, particle-wall (the ends, plates), particle-rod, particle-side
     PairCoefficients coeff_[4];
-    /// Enclosure::lateral_wall_ids(): the ids of the lateral surface are below it.
-    std::uint32_t side_walls_ = 1;
     EnclosureState enclosure_state_;
     HorizontalLayers layers_;
     Eigen::Vector3d layers_up_ = Eigen::Vector3d::Zero();  ///< what layers_ was built from
