@@ -307,8 +307,20 @@ std::shared_ptr<const config::Table> controller_table() {
         .bound(Bound::closed(1e-6, 0.5));
     t.integer(
          "window_periods", [](ControllerOptions & c) -> auto& { return c.window_periods; },
-         "periods that must stay within the tolerance")
+         "periods (or averages, with average_periods) that must stay within the tolerance")
         .bound(Bound::at_least(3));
+    t.integer(
+         "average_periods", [](ControllerOptions & c) -> auto& { return c.average_periods; },
+         "periods averaged into each value the window judges")
+        .bound(Bound::at_least(1))
+        .doc(
+            "as a swept-sine analyser averages: each value of the window is the mean RMS and "
+            "mean fundamental of this many periods. 1 (paper 000): every period is a value. A "
+            "damper whose response scatters from period to period (one sphere bouncing "
+            "chaotically in its gap, paper 003) never holds a window of single periods within "
+            "the tolerance; the means of blocks settle. window_periods, early_periods, "
+            "limit_cycle_periods and closest_rerun_periods then count blocks, "
+            "transient_periods, max_periods and drift_horizon_periods periods");
     t.integer(
          "early_periods", [](ControllerOptions & c) -> auto& { return c.early_periods; },
          "values needed for an early too-low/too-high decision (at most window_periods)")

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "control/block_average.hpp"
 #include "control/point_recorder.hpp"
 #include "control/update.hpp"
 #include "control/window.hpp"
@@ -129,7 +130,8 @@ PointResult AmplitudeController::run_point(Plant& plant, double frequency_hz, do
     forced_start_ = 0.0;
     std::vector<double> window;  // RMS since the last change, transient skipped; cleared at
                                  // every change so no stale or unfilled value votes
-    std::vector<std::complex<double>> phasors;  // the same periods' control fundamentals
+    std::vector<std::complex<double>> phasors;  // the same values' control fundamentals
+    BlockAverage block(o.average_periods);      // periods into values
     int since_change = 0;                       // periods at this amplitude (this frequency)
     Bracket bracket;
     std::optional<Sample> best;           // amplitude whose level came closest to the target
@@ -140,9 +142,11 @@ PointResult AmplitudeController::run_point(Plant& plant, double frequency_hz, do
     while (result.periods_simulated < o.max_periods) {
         const double rms = recorder.run(amplitude);
         if (++since_change <= o.transient_periods) continue;
-        window.push_back(rms);
         const auto& harmonics = result.periods.back().harmonics;
-        if (o.phase_test && !harmonics.empty()) phasors.push_back(harmonics.front());
+        const bool phase = o.phase_test && !harmonics.empty();
+        if (!block.add(rms, phase ? &harmonics.front() : nullptr)) continue;
+        window.push_back(block.value());
+        if (const auto fundamental = block.fundamental()) phasors.push_back(*fundamental);
 
         const WindowVerdict verdict = assess_window(
             window, target_rms, o,
@@ -198,7 +202,7 @@ PointResult AmplitudeController::run_point(Plant& plant, double frequency_hz, do
             result.amplitude_final = amplitude;
             result.rms_final = verdict.mean;
             result.window_end = result.periods_simulated;
-            result.window_begin = result.window_end - verdict.count;
+            result.window_begin = result.window_end - verdict.count * o.average_periods;
             accepted = true;
             break;
         }
@@ -236,6 +240,7 @@ PointResult AmplitudeController::run_point(Plant& plant, double frequency_hz, do
         amplitude = decision.next_amplitude;
         window.clear();
         phasors.clear();
+        block.clear();
         since_change = 0;
     }
 
@@ -247,12 +252,13 @@ PointResult AmplitudeController::run_point(Plant& plant, double frequency_hz, do
             for (int i = 0; i < o.transient_periods; ++i) recorder.run(closest);
         }
         result.window_begin = result.periods_simulated;
+        const int rerun = o.closest_rerun_periods * o.average_periods;
         double sum = 0.0;
-        for (int i = 0; i < o.closest_rerun_periods; ++i) sum += recorder.run(closest);
+        for (int i = 0; i < rerun; ++i) sum += recorder.run(closest);
         result.window_end = result.periods_simulated;
         result.status = PointStatus::kClosest;
         result.amplitude_final = closest;
-        result.rms_final = sum / static_cast<double>(o.closest_rerun_periods);
+        result.rms_final = sum / static_cast<double>(rerun);
     }
 
     previous_amplitude_ = result.amplitude_final;

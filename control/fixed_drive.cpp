@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "control/block_average.hpp"
 #include "control/point_recorder.hpp"
 #include "control/window.hpp"
 
@@ -29,14 +30,17 @@ PointResult run_fixed_point(Plant& plant, double frequency_hz, double amplitude,
     PointResult result;
     PointRecorder recorder(plant, frequency_hz, 0.0, result);
     result.amplitude_final = amplitude;
-    std::vector<double> window;  // RMS after the transient, oldest first
+    std::vector<double> window;  // values (periods or their block means) after the transient
     std::vector<std::complex<double>> phasors;
+    BlockAverage block(options.average_periods);
     while (result.periods_simulated < options.max_periods) {
         const double rms = recorder.run(amplitude);
         if (result.periods_simulated <= options.transient_periods) continue;
-        window.push_back(rms);
         const auto& harmonics = result.periods.back().harmonics;
-        if (options.phase_test && !harmonics.empty()) phasors.push_back(harmonics.front());
+        const bool phase = options.phase_test && !harmonics.empty();
+        if (!block.add(rms, phase ? &harmonics.front() : nullptr)) continue;
+        window.push_back(block.value());
+        if (const auto fundamental = block.fundamental()) phasors.push_back(*fundamental);
         const auto verdict = assess_steady(window, options,
                                            phasors.size() == window.size()
                                                ? std::span<const std::complex<double>>(phasors)
@@ -54,13 +58,15 @@ PointResult run_fixed_point(Plant& plant, double frequency_hz, double amplitude,
                                                                 : PointStatus::kLimitCycle2;
         result.rms_final = verdict->mean;
         result.window_end = result.periods_simulated;
-        result.window_begin = result.window_end - verdict->count;
+        result.window_begin = result.window_end - verdict->count * options.average_periods;
         return result;
     }
     // Never steady: the long mean is the estimate (a chaotic response scatters about it).
-    const int after_transient = static_cast<int>(window.size());
+    const int after_transient =
+        std::max(result.periods_simulated - std::max(options.transient_periods, 0), 0);
     const int recorded =
-        std::min(after_transient, std::max(options.window_periods, after_transient / 2));
+        std::min(after_transient,
+                 std::max(options.window_periods * options.average_periods, after_transient / 2));
     result.status = PointStatus::kUnsettled;
     result.window_end = result.periods_simulated;
     result.window_begin = result.window_end - std::max(recorded, 1);

@@ -27,20 +27,25 @@ Violations ControllerOptions::validate() const {
                        "must be in [3, window_periods = " + std::to_string(window_periods) + "]",
                        "fewest values for an early too-low/too-high decision"});
     }
+    require_at_least(out, "average_periods", average_periods, 1,
+                     "periods averaged into each value the window judges");
     require_at_least(out, "transient_periods", transient_periods, 0,
                      "periods skipped after an amplitude or frequency change");
     if (limit_cycle_periods < 4 || limit_cycle_periods % 2 != 0) {
         out.push_back({"limit_cycle_periods", std::to_string(limit_cycle_periods),
                        "must be even and >= 4", "periods that must alternate for a 2-cycle"});
     }
-    const int needed =
-        std::max(transient_periods, 0) + std::max(window_periods, limit_cycle_periods);
+    // In 64 bits: a config may give any two ints.
+    const long long needed =
+        static_cast<long long>(std::max(transient_periods, 0)) +
+        static_cast<long long>(std::max(average_periods, 1)) *
+            static_cast<long long>(std::max(window_periods, limit_cycle_periods));
     if (max_periods < needed) {
-        out.push_back(
-            {"max_periods", std::to_string(max_periods),
-             "must be >= transient_periods + max(window_periods, limit_cycle_periods) = " +
-                 std::to_string(needed),
-             "budget of periods per point"});
+        out.push_back({"max_periods", std::to_string(max_periods),
+                       "must be >= transient_periods + average_periods * max(window_periods, "
+                       "limit_cycle_periods) = " +
+                           std::to_string(needed),
+                       "budget of periods per point"});
     }
     require_at_least(out, "closest_rerun_periods", closest_rerun_periods, 1,
                      "periods re-run at the closest amplitude after a failure");

@@ -15,8 +15,15 @@ struct ControllerOptions {
     /// Loose relative tolerance [-]: settling spread, two-period match, early-decision margin
     /// and acceptance band |rms - target| <= tolerance * target (paper 000: "large tolerance").
     double tolerance = 0.05;
-    /// Periods n that must stay within `tolerance` to call the response settled [periods].
+    /// Values n that must stay within `tolerance` to call the response settled; a value is
+    /// one period, or the mean of average_periods periods [periods].
     int window_periods = 4;
+    /// Periods averaged into each value the window judges, as a swept-sine analyser averages
+    /// [periods]. 1: every period is a value (paper 000). A damper that scatters from period
+    /// to period (a chaotic single sphere) needs blocks: their means settle where single
+    /// periods never do. window_periods, early_periods, limit_cycle_periods and
+    /// closest_rerun_periods then count blocks; transient_periods and max_periods periods.
+    int average_periods = 1;
     /// Fewest values in the window before an early too-low/too-high decision [periods]; at
     /// least 3 so that a monotonic drift can be told from scatter.
     int early_periods = 3;

@@ -49,6 +49,13 @@ constexpr double kSettledDriftShare = 0.5;
 /// Two ratios further apart than this factor are not one geometric decay [-].
 constexpr double kRatioSpread = 2.0;
 
+/// The drift horizon in the window's values: drift_horizon_periods is in periods, and a
+/// value stands for average_periods of them.
+int horizon_values(const ControllerOptions& options) {
+    const int a = std::max(options.average_periods, 1);
+    return (options.drift_horizon_periods + a - 1) / a;
+}
+
 }  // namespace
 
 Drift assess_drift(std::span<const double> v, int horizon_periods) {
@@ -149,7 +156,7 @@ std::optional<WindowVerdict> assess_steady(std::span<const double> values,
                                            std::span<const std::complex<double>> fundamentals) {
     const std::size_t m = std::min(values.size(), static_cast<std::size_t>(options.window_periods));
     const auto w = values.subspan(values.size() - m, m);  // newest m values, oldest first
-    return steady_verdict(values, w, assess_drift(w, options.drift_horizon_periods), options,
+    return steady_verdict(values, w, assess_drift(w, horizon_values(options)), options,
                           fundamentals);
 }
 
@@ -160,7 +167,7 @@ WindowVerdict assess_window(std::span<const double> values, double target_rms,
     const double tol = options.tolerance;
     const std::size_t m = std::min(values.size(), n);
     const auto w = values.subspan(values.size() - m, m);  // newest m values, oldest first
-    const Drift drift = assess_drift(w, options.drift_horizon_periods);
+    const Drift drift = assess_drift(w, horizon_values(options));
     if (auto steady = steady_verdict(values, w, drift, options, fundamentals)) return *steady;
 
     if (m >= static_cast<std::size_t>(options.early_periods)) {

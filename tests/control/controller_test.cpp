@@ -56,10 +56,10 @@ void expect_consistent_record(const PointResult& r, const ControllerOptions& o) 
                              r.decisions.begin(), r.decisions.end(),
                              [](const Decision& d) { return d.rule != UpdateRule::kNone; })));
     // History is cleared at every change: a decision only uses periods driven after the
-    // previous one, past the transient, and never fewer than early_periods of them.
+    // previous one, past the transient, and never fewer than early_periods values of them.
     int previous = -1;
     for (const Decision& d : r.decisions) {
-        EXPECT_GE(d.period - previous, o.transient_periods + o.early_periods);
+        EXPECT_GE(d.period - previous, o.transient_periods + o.early_periods * o.average_periods);
         EXPECT_LE(d.next_amplitude, d.amplitude * o.max_step_factor * (1.0 + 1e-12));
         EXPECT_GE(d.next_amplitude, d.amplitude / o.max_step_factor * (1.0 - 1e-12));
         previous = d.period;
@@ -182,6 +182,32 @@ TEST(AmplitudeController, ChaoticResponseFallsBackToTheClosestAmplitudeAndFlagsI
     // near the one that gives the target, within the scatter.
     EXPECT_GE(r.updates, 4);
     EXPECT_LE(relative_error(plant.steady_rms(r.amplitude_final, 9.5), kTarget), kScatter);
+    expect_consistent_record(r, o);
+}
+
+TEST(AmplitudeController, AChaoticResponseIsControlledOnTheMeansOfBlocksOfPeriods) {
+    // The same +/- 30 % scatter (standard deviation 17 %) averaged over blocks of 32 periods
+    // (3.1 %): a window of four blocks settles within 10 % and the controller accepts an
+    // amplitude whose true response is on target within the tolerance and the recorded
+    // window's own chance (three standard errors of 128 periods).
+    constexpr double kScatter = 0.30;
+    constexpr double kGain = 5.0;
+    NoisyPlant plant(kGain, kScatter, 20240611);
+    ControllerOptions o;
+    o.tolerance = 0.1;
+    o.average_periods = 32;
+    o.max_periods = 2000;
+    o.initial_amplitude = 0.5 * kTarget / kGain;  // twice too low
+    AmplitudeController controller(o);
+    const PointResult r = controller.run_point(plant, 9.5, kTarget);
+
+    ASSERT_EQ(r.status, PointStatus::kConverged);
+    EXPECT_GE(r.updates, 1);
+    EXPECT_EQ(r.window_end - r.window_begin, o.window_periods * o.average_periods);
+    EXPECT_LE(relative_error(r.rms_final, kTarget), o.tolerance);
+    const double chance = 3.0 * kScatter / std::sqrt(3.0 * 128.0);
+    EXPECT_LE(relative_error(plant.steady_rms(r.amplitude_final, 9.5), kTarget),
+              o.tolerance + chance);
     expect_consistent_record(r, o);
 }
 

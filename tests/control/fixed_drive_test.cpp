@@ -117,6 +117,24 @@ TEST(FixedDrive, AChaoticResponseIsUnsettledAndRecordsTheMeanOfTheLaterHalf) {
     EXPECT_EQ(to_string(r.status), "unsettled");
 }
 
+TEST(FixedDrive, AChaoticResponseSettlesOnTheMeansOfBlocksOfPeriods) {
+    // The same +/- 30 % scatter averaged over blocks of 32 periods: the blocks' standard
+    // deviation is 17 % / sqrt 32 = 3.1 %, so four of them fall within a 10 % window, as a
+    // swept-sine analyser's averages do. The recorded window is whole blocks.
+    NoisyPlant plant(2.0, 0.3, 7);
+    ControllerOptions o;
+    o.tolerance = 0.1;
+    o.average_periods = 32;
+    o.max_periods = 1000;
+    const PointResult r = run_fixed_point(plant, 10.0, 1.0, o);
+    ASSERT_EQ(r.status, PointStatus::kConverged);
+    expect_fixed_record(r, 1.0);
+    EXPECT_EQ(r.window_end - r.window_begin, o.window_periods * o.average_periods);
+    EXPECT_EQ((r.periods_simulated - o.transient_periods) % o.average_periods, 0);
+    // The mean of 128 periods: within three of its standard errors (17 % / sqrt 128) of 2.
+    EXPECT_NEAR(r.rms_final, 2.0, 3.0 * 2.0 * 0.3 / std::sqrt(3.0 * 128.0));
+}
+
 TEST(FixedDrive, InvalidFrequencyAmplitudeOrOptionsAreRejected) {
     SdofPlant plant(kMass, kFn, 0.05);
     ControllerOptions o;

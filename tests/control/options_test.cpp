@@ -50,6 +50,23 @@ TEST(ControllerOptions, InitialAmplitudeOutsideTheBoundsIsRejected) {
     EXPECT_TRUE(has_key(o.validate(), "initial_amplitude"));
 }
 
+TEST(ControllerOptions, AveragesNeedAtLeastOnePeriodAndTheBudgetAWindowOfThem) {
+    ControllerOptions o;
+    o.average_periods = 0;
+    EXPECT_TRUE(has_key(o.validate(), "average_periods"));
+    // The default budget, 60 periods, holds the transient period and six blocks of 8 (the
+    // two-period cycle's six values, more than the window's four: 49) but not of 16 (97).
+    o.average_periods = 8;
+    EXPECT_TRUE(o.validate().empty());
+    o.average_periods = 16;
+    EXPECT_TRUE(has_key(o.validate(), "max_periods"));
+    o.max_periods = 97;
+    EXPECT_TRUE(o.validate().empty());
+    // Products beyond int do not wrap into a budget that passes.
+    o.average_periods = 1 << 30;
+    EXPECT_TRUE(has_key(o.validate(), "max_periods"));
+}
+
 TEST(ControllerOptions, EarlyDecisionCannotNeedMoreThanTheWindow) {
     ControllerOptions o;
     o.early_periods = 5;
