@@ -1,10 +1,14 @@
 // Paper 002's claim on a bed small enough for CI: at the paper's DEM condition (120 Hz,
 // 10.5 g peak) the damper with the obstacle grid dissipates more than the one without,
 // though it holds less (paper 002, section 4.1: 2.48 times; docs/validation.md, paper 002).
+// And what caps paper 002's Table 2: at twice gravity the bed lifts and lands as one
+// completely inelastic block, whatever its contacts.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -18,7 +22,9 @@ namespace {
 /// volume): without the grid 650 spheres (what pours in, 0.52 of the cavity, at the paper's
 /// 90 % fill), with it 526 (the paper's 153 / 189 of that); the grid's nodes off the centre so
 /// that the rods stand 2.5 and 7.5 mm from the axis (those at 7.5 mm lie on the walls).
-CharacterizeResult small_bed(const std::string& name, int count) {
+CharacterizeResult small_bed(const std::string& name, int count, double peak_g = 10.5,
+                             double frequency_hz = 120.0, int seeds = 2,
+                             const std::vector<std::string>& more = {}) {
     auto config = load_campaign_config(std::string(SB_SOURCE_DIR) + "/configs/" + name);
     std::vector<std::string> changes{"dampers.pd.enclosure.length_x_m=0.015",
                                      "dampers.pd.enclosure.length_y_m=0.015",
@@ -27,13 +33,85 @@ CharacterizeResult small_bed(const std::string& name, int count) {
     if (config.campaign.dampers.front().enclosure.rods.enabled) {
         changes.push_back("dampers.pd.enclosure.rods.origin_m=[0.0025, 0.0025, 0.0]");
     }
+    changes.insert(changes.end(), more.begin(), more.end());
     apply_overrides(config, changes);
     CharacterizeOptions options;
-    options.levels_g = {10.5 / std::sqrt(2.0)};  // RMS of the paper's 10.5 g peak
-    options.frequencies_hz = {120.0};
-    options.seeds = 2;
+    options.levels_g = {peak_g / std::sqrt(2.0)};  // the RMS of the peak
+    options.frequencies_hz = {frequency_hz};
+    options.seeds = seeds;
     options.threads = 2;
     return characterize(config, options);
+}
+
+/// A completely inelastic point mass on a floor moving as z = X sin(wt) with peak
+/// acceleration gamma g (the inelastic bouncing ball, the limit a deep granular bed
+/// approaches: Sack et al., Phys. Rev. Lett. 2013; Masmoudi et al., Granular Matter 2016).
+/// The mass rides the floor until the floor's acceleration falls below -g, flies, lands with
+/// no rebound and rides again. Per unit mass: the apparent mass M/m = -Q1/(m a1), Q the force
+/// on the floor (-m(a + g) while riding, the landing impulse m(v - v_floor) at touch-down),
+/// and the loss factor from the landings' kinetic energy, W / (pi m w^2 X^2).
+struct InelasticBlock {
+    std::complex<double> apparent_mass;
+    double loss_factor_from_landings = 0.0;
+};
+
+/// Event by event: the flight in closed form, the landing found by bisection, the fundamental
+/// projected over whole periods once the orbit has settled (gamma > 1).
+InelasticBlock inelastic_block(double gamma) {
+    constexpr double kG = 9.80665;
+    const double w = 2.0 * std::numbers::pi;  // M/m depends on gamma only: take f = 1 Hz
+    const double x = gamma * kG / (w * w);
+    const auto floor_z = [&](double t) { return x * std::sin(w * t); };
+    const auto floor_v = [&](double t) { return x * w * std::cos(w * t); };
+    const auto phasor = [&](double t) { return std::exp(std::complex<double>(0.0, -w * t)); };
+    const double settle = 40.0;  // periods
+    const double end = 240.0;
+    const double step = 1e-4;  // flight bracketing step [periods]
+    std::complex<double> q{};
+    double landing_energy = 0.0;
+    double t = 0.0;
+    while (t < end) {
+        // Ride the floor to lift-off, where sin(wt) first reaches 1/gamma.
+        const double two_pi = 2.0 * std::numbers::pi;
+        const double phase = std::fmod(w * t, two_pi);
+        const double lift =
+            std::sin(phase) >= 1.0 / gamma
+                ? t
+                : t + std::fmod(std::asin(1.0 / gamma) - phase + two_pi, two_pi) / w;
+        // -(a_floor + g) e^{-iwt} over the ride, by the midpoint rule (2000 per period).
+        const int n = std::max(2, static_cast<int>((lift - t) * 2000.0));
+        const double h = (lift - t) / n;
+        for (int k = 0; k < n; ++k) {
+            const double tm = t + (k + 0.5) * h;
+            if (tm >= settle) q += -(-x * w * w * std::sin(w * tm) + kG) * phasor(tm) * h;
+        }
+        // Fly: z(t) = z0 + v0 s - g s^2/2 until the floor meets it, bracketed after lift-off.
+        const double z0 = floor_z(lift);
+        const double v0 = floor_v(lift);
+        const auto above = [&](double tt) {
+            const double s = tt - lift;
+            return z0 + v0 * s - 0.5 * kG * s * s > floor_z(tt);
+        };
+        double hi = lift + step;
+        while (above(hi)) hi += step;
+        double lo = hi - step;
+        for (int k = 0; k < 60; ++k) {
+            const double mid = 0.5 * (lo + hi);
+            (above(mid) ? lo : hi) = mid;
+        }
+        const double landing = hi;
+        const double relative = v0 - kG * (landing - lift) - floor_v(landing);
+        if (landing >= settle) {
+            q += relative * phasor(landing);
+            landing_energy += 0.5 * relative * relative;
+        }
+        t = landing;
+    }
+    const double periods = t - settle;
+    // The floor's acceleration -X w^2 sin(wt) = Re{i X w^2 e^{iwt}}: a1 = i X w^2.
+    const std::complex<double> q1 = 2.0 * q / periods;
+    const std::complex<double> a1(0.0, x * w * w);
+    return {-q1 / a1, landing_energy / periods / (std::numbers::pi * w * w * x * x)};
 }
 
 TEST(ObstacleGrid, AtPaper002sDemConditionTheGridDissipatesMoreThoughItHoldsLess) {
@@ -53,6 +131,48 @@ TEST(ObstacleGrid, AtPaper002sDemConditionTheGridDissipatesMoreThoughItHoldsLess
         << "grid " << b.power_w << " W, without " << a.power_w << " W";
     // And per kilogram of particles, what a designer compares.
     EXPECT_GT(b.power_w / b.bed_mass_kg, 1.3 * a.power_w / a.bed_mass_kg);
+}
+
+TEST(InelasticBlock, TheReferenceModelRidesAsARigidMassNearLiftOffAndLosesWhatItsLandingsDo) {
+    // Just above lift-off the flights are short: nearly a rigid mass. Further up the period-one
+    // orbit (gamma up to about 3.7) loses the landings' kinetic energy, and the loss the force's
+    // fundamental carries, -Im M/m, is that energy (two ways of counting one loss).
+    const auto riding = inelastic_block(1.05);
+    EXPECT_NEAR(riding.apparent_mass.real(), 1.0, 0.01);
+    EXPECT_NEAR(riding.apparent_mass.imag(), 0.0, 0.01);
+    for (const double gamma : {1.5, 2.04, 2.5}) {
+        const auto block = inelastic_block(gamma);
+        EXPECT_GT(block.loss_factor_from_landings, 0.1) << gamma;
+        EXPECT_NEAR(-block.apparent_mass.imag(), block.loss_factor_from_landings,
+                    0.01 * block.loss_factor_from_landings)
+            << gamma;
+    }
+}
+
+TEST(InelasticBlock, AtTwiceGravityTheOpenBedDissipatesAsOneBlockWhateverItsContacts) {
+    // The small open bed (650 spheres, 12 layers) at 110 Hz and 2.04 g peak, contacts stiff
+    // enough that the bed's own mode lies far above the drive (1e5 N/m), against the
+    // completely inelastic block (M/m = 0.704 - 0.603i). Its loss within a tenth of the
+    // block's, and so with a restitution of 0.97 and a third of the friction (measured
+    // 0.628 and 0.591); Hertz contacts of steel, or PMMA walls, give the same within 0.04
+    // (docs/validation.md, paper 002, Table 2). The in-phase part follows the block with the
+    // config's contacts (0.685) and moves with the friction (0.620 at 0.1: the slippery bed
+    // lands less at once). At 1.22 g the same bed is no block (0.14 of loss against the
+    // block's 0.046): this is the bouncing regime's law, not any bed's.
+    const std::complex<double> block = inelastic_block(2.04).apparent_mass;
+    const std::vector<std::string> stiff{"dampers.pd.contact.normal_stiffness=1e5",
+                                         "dampers.pd.settle.dt_s=3e-6"};
+    std::vector<std::string> other = stiff;
+    other.push_back("dampers.pd.contact.restitution=0.97");
+    other.push_back("dampers.pd.contact.sliding_friction=0.1");
+    for (const auto& changes : {stiff, other}) {
+        const auto bed = small_bed("paper002-nogrid.toml", 650, 2.04, 110.0, 1, changes);
+        ASSERT_EQ(bed.table.rows.size(), 1U);
+        const auto& row = bed.table.rows.front();
+        const std::complex<double> ratio = row.apparent_mass_kg / row.bed_mass_kg;
+        EXPECT_NEAR(ratio.imag(), block.imag(), 0.1 * std::abs(block.imag())) << changes.back();
+        if (changes == stiff) EXPECT_NEAR(ratio.real(), block.real(), 0.1 * block.real());
+    }
 }
 
 }  // namespace
