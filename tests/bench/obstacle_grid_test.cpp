@@ -171,7 +171,9 @@ TEST(InelasticBlock, AtTwiceGravityTheOpenBedDissipatesAsOneBlockWhateverItsCont
         const auto& row = bed.table.rows.front();
         const std::complex<double> ratio = row.apparent_mass_kg / row.bed_mass_kg;
         EXPECT_NEAR(ratio.imag(), block.imag(), 0.1 * std::abs(block.imag())) << changes.back();
-        if (changes == stiff) EXPECT_NEAR(ratio.real(), block.real(), 0.1 * block.real());
+        if (changes == stiff) {
+            EXPECT_NEAR(ratio.real(), block.real(), 0.1 * block.real());
+        }
     }
 }
 
