@@ -4,7 +4,6 @@
 
 #include <complex>
 #include <optional>
-#include <vector>
 
 namespace sb::control {
 
@@ -47,8 +46,6 @@ class BlockAverage {
         rms_sum_ = 0.0;
         fundamental_sum_ = 0.0;
     }
-
-    [[nodiscard]] int periods() const { return periods_; }
 
   private:
     int periods_;
