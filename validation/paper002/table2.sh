@@ -1,12 +1,24 @@
 #!/usr/bin/env bash
-# Paper 002's Table 2: the resonance peak of the acceleration at the damper against the mass
-# fill, with and without the obstacle grid, predicted from the damper's describing function.
+# Paper 002's Tables 2 and 4: the resonance peak of the acceleration at the damper against the
+# mass fill and the particles' material, with and without the obstacle grid, predicted from
+# the damper's describing function.
 #
-#   validation/paper002/table2.sh OUT [DAMPER-FILL ...]    # e.g. nogrid-90 grid-50 (default: all six)
+#   validation/paper002/table2.sh OUT [KEY ...]   # e.g. nogrid-90 grid-50 grid-90-pb (default: Table 2)
 #   (shakerbench from build/release, the README's build, or $SHAKERBENCH)
 #
-# DAMPER is nogrid or grid, FILL 50, 70 or 90 (Table 1's masses: 105, 147, 189 g without the
-# grid, 85, 119, 153 g with it). Per damper and fill the damper alone is characterised at four
+# DAMPER is nogrid or grid, FILL 50, 60, 70, 80 or 90 (Table 1's masses: 105, 147, 189 g
+# without the grid, 85, 119, 153 g with it, at 50, 70 and 90 %; Table 1 is linear in the fill,
+# 2.1 and 1.7 g per percent, so 60 and 80 % take 126 and 168 g, 102 and 136 g). KEY is
+# DAMPER-FILL for Table 2's stainless steel, DAMPER-90-MATERIAL for Table 4 (al, zro2, brass,
+# pb): the same number of 2 mm spheres as steel's 90 % (the mass fill ratio of each material
+# is the share of the cavity that material fills), its density (the paper's: 2700, 5850,
+# 8500, 11343.7 kg/m^3) and a restitution chosen for it, walls and rods alike (0.6, 0.9, 0.8,
+# 0.3; steel 0.9: the paper says only that aluminium's is the lowest of the ductile metals),
+# the settling step scaled with the square root of the density (the contact time's), and
+# 75 Hz characterised as well for the beds heavier than steel's (brass and lead load the
+# beam's resonance below 90 Hz).
+#
+# Per damper and fill the damper alone is characterised at four
 # peak accelerations (8, 12, 20, 50 m/s^2: RMS 0.577, 0.865, 1.442, 3.605 g, around Table 2's
 # 8.9-45.4 m/s^2, denser where the beds start to move) and three frequencies (90, 110, 132 Hz: the loaded beam's resonance lies between 90
 # and 110 Hz), then the beam is predicted at the fixed drive of configs/paper002-*.toml every
@@ -26,13 +38,19 @@
 set -euo pipefail
 export LC_ALL=C  # seq and awk print decimal points
 if [[ $# -lt 1 ]]; then
-    echo "usage: $0 OUT [DAMPER-FILL ...]   (nogrid-50 ... grid-90)" >&2
+    echo "usage: $0 OUT [KEY ...]   (nogrid-50 ... grid-90, fills 50 60 70 80 90; nogrid-90-al ... grid-90-pb)" >&2
     exit 2
 fi
 out=$1
 shift
 keys=("$@")
-[[ ${#keys[@]} -gt 0 ]] || keys=(nogrid-50 nogrid-70 nogrid-90 grid-50 grid-70 grid-90)
+[[ ${#keys[@]} -gt 0 ]] || keys=(nogrid-50 nogrid-60 nogrid-70 nogrid-80 nogrid-90
+                                  grid-50 grid-60 grid-70 grid-80 grid-90)
+# Table 4: density [kg/m^3], restitution, the paper's peak without and with the grid [m/s^2]
+declare -A density=([al]=2700 [zro2]=5850 [brass]=8500 [pb]=11343.7)
+declare -A restitution=([al]=0.6 [zro2]=0.9 [brass]=0.8 [pb]=0.3)
+declare -A paper4=([nogrid-al]=47.4 [nogrid-zro2]=36.1 [nogrid-brass]=32.5 [nogrid-pb]=33.2
+                   [grid-al]=22.5 [grid-zro2]=11.4 [grid-brass]=9 [grid-pb]=8.9)
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
 sb=${SHAKERBENCH:-$root/build/release/apps/shakerbench}
@@ -42,11 +60,13 @@ sb=${SHAKERBENCH:-$root/build/release/apps/shakerbench}
 }
 mkdir -p "$out"
 
-declare -A whole=([nogrid-50]=3173 [nogrid-70]=4442 [nogrid-90]=5712
-                  [grid-50]=2569 [grid-70]=3596 [grid-90]=4624)
-declare -A paper=([nogrid-50]=45.4 [nogrid-70]=35.5 [nogrid-90]=29.6
-                  [grid-50]=22.7 [grid-70]=12.2 [grid-90]=8.9)
-stiff=(--set dampers.pd.contact.normal_stiffness=1e5 --set dampers.pd.settle.dt_s=3e-6)
+# spheres of 33.09 mg (2 mm, 7900 kg/m^3) making up each fill's mass
+declare -A whole=([nogrid-50]=3173 [nogrid-60]=3808 [nogrid-70]=4442 [nogrid-80]=5077
+                  [nogrid-90]=5712 [grid-50]=2569 [grid-60]=3082 [grid-70]=3596
+                  [grid-80]=4110 [grid-90]=4624)
+declare -A paper=([nogrid-50]=45.4 [nogrid-60]=38.6 [nogrid-70]=35.5 [nogrid-80]=32.5
+                  [nogrid-90]=29.6 [grid-50]=22.7 [grid-60]=16.2 [grid-70]=12.2
+                  [grid-80]=11.6 [grid-90]=8.9)
 quarter=(--set dampers.pd.enclosure.length_x_m=0.015 --set dampers.pd.enclosure.length_y_m=0.015
          --set 'dampers.pd.enclosure.rods.origin_m=[0.0025,0.0025,0]')
 grid_hz=$(seq -s, 70 0.25 145)
@@ -55,12 +75,27 @@ drive=$(awk -v z="$zeta" 'BEGIN { printf "%.6g", 1.316 * z / 0.005 }')
 suffix=""
 [[ $zeta == 0.005 ]] || suffix="-zeta$zeta"
 
-printf '%-7s %5s %10s %8s %-13s %8s %7s\n' damper fill 'peak m/s2' 'at Hz' status paper ratio
+printf '%-7s %-10s %10s %8s %-13s %8s %7s\n' damper fill 'peak m/s2' 'at Hz' status paper ratio
 for key in "${keys[@]}"; do
-    [[ -n ${whole[$key]:-} ]] || { echo "$0: no $key (nogrid-50 ... grid-90)" >&2; exit 2; }
-    kind=${key%-*}
-    fill=${key#*-}
-    count=${whole[$key]}
+    IFS=- read -r kind fill material <<< "$key"
+    [[ -n ${whole[$kind-$fill]:-} ]] || { echo "$0: no $key (nogrid-50 ... grid-90)" >&2; exit 2; }
+    count=${whole[$kind-$fill]}
+    peak_paper=${paper[$kind-$fill]}
+    matter=()
+    settle=3e-6
+    frequencies=90,110,132
+    if [[ -n $material ]]; then
+        [[ $fill == 90 && -n ${density[$material]:-} ]] || {
+            echo "$0: no $key (Table 4: nogrid-90-MATERIAL, grid-90-MATERIAL; al zro2 brass pb)" >&2
+            exit 2
+        }
+        settle=$(awk -v r="${density[$material]}" 'BEGIN { printf "%.3g", 3e-6 * sqrt(r / 7900) }')
+        matter=(--set dampers.pd.particles.density_kg_m3=${density[$material]}
+                --set dampers.pd.contact.restitution=${restitution[$material]})
+        peak_paper=${paper4[$kind-$material]}
+        [[ ${density[$material]%.*} -le 7900 ]] || frequencies=75,$frequencies
+    fi
+    stiff=(--set dampers.pd.contact.normal_stiffness=1e5 --set dampers.pd.settle.dt_s=$settle)
     part=(--set dampers.pd.particles.count=$count --seeds 1)
     scale=(--scale 1)
     if [[ $kind == grid ]]; then
@@ -68,21 +103,21 @@ for key in "${keys[@]}"; do
         scale=(--scale 4)
     fi
     if [[ ! -f $out/$key/characterization.csv ]]; then
-        "$sb" characterize "$root/configs/paper002-$kind.toml" "${stiff[@]}" "${part[@]}" \
-            --levels-g 0.57684,0.86526,1.44210,3.60525 --frequencies-hz 90,110,132 -j 1 \
+        "$sb" characterize "$root/configs/paper002-$kind.toml" "${stiff[@]}" "${matter[@]}" "${part[@]}" \
+            --levels-g 0.57684,0.86526,1.44210,3.60525 --frequencies-hz $frequencies -j 1 \
             --out "$out/$key" > "$out/$key.log" 2>&1
     fi
-    "$sb" predict "$root/configs/paper002-$kind.toml" "${stiff[@]}" \
+    "$sb" predict "$root/configs/paper002-$kind.toml" "${stiff[@]}" "${matter[@]}" \
         --set dampers.pd.particles.count=$count --set "campaign.frequencies.values_hz=[$grid_hz]" \
         --set structure.damping.default_ratio="$zeta" --set "campaign.drive.amplitudes=[$drive]" \
         --characterization "$out/$key/characterization.csv" "${scale[@]}" \
         --out "$out/predicted-$key$suffix" --quiet > /dev/null
-    awk -F, -v kind="$kind" -v fill="$fill" -v paper="${paper[$key]}" '
+    awk -F, -v kind="$kind" -v fill="$fill %${material:+ $material}" -v paper="$peak_paper" '
         NR == 1 { for (c = 1; c <= NF; ++c) col[$c] = c; next }
         {
             a = sqrt($col["acc_damper_re"] ^ 2 + $col["acc_damper_im"] ^ 2)
             if (a > peak) { peak = a; at = $col["frequency_hz"]; status = $col["status"] }
         }
-        END { printf "%-7s %4s%% %10.1f %8.2f %-13s %8.1f %7.2f\n", kind, fill, peak, at, status, paper, peak / paper }
+        END { printf "%-7s %-10s %10.1f %8.2f %-13s %8.1f %7.2f\n", kind, fill, peak, at, status, paper, peak / paper }
     ' "$out/predicted-$key$suffix/points.csv"
 done
