@@ -4,6 +4,8 @@
 
 #include <complex>
 #include <optional>
+#include <span>
+#include <vector>
 
 namespace sb::control {
 
@@ -53,6 +55,45 @@ class BlockAverage {
     int fundamentals_ = 0;
     double rms_sum_ = 0.0;
     std::complex<double> fundamental_sum_{};
+};
+
+/// The values a window judges since the drive last changed: one per completed block of
+/// periods after the transient, its mean RMS, and its mean control fundamental when the
+/// phase test has one for every value.
+class WindowValues {
+  public:
+    explicit WindowValues(int average_periods) : block_(average_periods) {}
+
+    /// Adds one period (as BlockAverage::add); true when it completed a block, which is then
+    /// the last of values().
+    bool add(double rms, const std::complex<double>* fundamental) {
+        if (!block_.add(rms, fundamental)) return false;
+        values_.push_back(block_.value());
+        if (const auto mean = block_.fundamental()) phasors_.push_back(*mean);
+        return true;
+    }
+
+    /// The blocks' mean RMS, oldest first [channel unit].
+    [[nodiscard]] const std::vector<double>& values() const { return values_; }
+
+    /// The blocks' mean fundamentals, one per value; empty when a block lacked one (the
+    /// phase test is then not applied).
+    [[nodiscard]] std::span<const std::complex<double>> phasors() const {
+        if (phasors_.size() != values_.size()) return {};
+        return phasors_;
+    }
+
+    /// Forgets every value and the partly filled block (the amplitude or frequency changed).
+    void clear() {
+        values_.clear();
+        phasors_.clear();
+        block_.clear();
+    }
+
+  private:
+    BlockAverage block_;
+    std::vector<double> values_;
+    std::vector<std::complex<double>> phasors_;
 };
 
 }  // namespace sb::control

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstddef>
 #include <optional>
-#include <span>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -128,11 +127,10 @@ PointResult AmplitudeController::run_point(Plant& plant, double frequency_hz, do
 
     double amplitude = start_amplitude(target_rms);
     forced_start_ = 0.0;
-    std::vector<double> window;  // RMS since the last change, transient skipped; cleared at
-                                 // every change so no stale or unfilled value votes
-    std::vector<std::complex<double>> phasors;  // the same values' control fundamentals
-    BlockAverage block(o.average_periods);      // periods into values
-    int since_change = 0;                       // periods at this amplitude (this frequency)
+    // Since the last change, transient skipped; cleared at every change so no stale or
+    // unfilled value votes.
+    WindowValues window(o.average_periods);
+    int since_change = 0;  // periods at this amplitude (this frequency)
     Bracket bracket;
     std::optional<Sample> best;           // amplitude whose level came closest to the target
     std::optional<Sample> last_measured;  // previous settled or two-period level
@@ -144,21 +142,18 @@ PointResult AmplitudeController::run_point(Plant& plant, double frequency_hz, do
         if (++since_change <= o.transient_periods) continue;
         const auto& harmonics = result.periods.back().harmonics;
         const bool phase = o.phase_test && !harmonics.empty();
-        if (!block.add(rms, phase ? &harmonics.front() : nullptr)) continue;
-        window.push_back(block.value());
-        if (const auto fundamental = block.fundamental()) phasors.push_back(*fundamental);
+        if (!window.add(rms, phase ? &harmonics.front() : nullptr)) continue;
 
-        const WindowVerdict verdict = assess_window(
-            window, target_rms, o,
-            phasors.size() == window.size() ? std::span<const std::complex<double>>(phasors)
-                                            : std::span<const std::complex<double>>());
+        const WindowVerdict verdict =
+            assess_window(window.values(), target_rms, o, window.phasors());
         if (verdict.state == WindowState::kFilling) continue;
         if (verdict.state == WindowState::kUnsettled) {
             // Neither settled nor clearly off: its mean still ranks the amplitude for the
             // closest fallback (a chaotic response never settles).
             const std::size_t n = static_cast<std::size_t>(o.window_periods);
+            const auto& values = window.values();
             double sum = 0.0;
-            for (std::size_t i = window.size() - n; i < window.size(); ++i) sum += window[i];
+            for (std::size_t i = values.size() - n; i < values.size(); ++i) sum += values[i];
             const Sample s{amplitude, sum / static_cast<double>(n)};
             if (closer(best, s, target_rms)) best = s;
             continue;
@@ -239,8 +234,6 @@ PointResult AmplitudeController::run_point(Plant& plant, double frequency_hz, do
 
         amplitude = decision.next_amplitude;
         window.clear();
-        phasors.clear();
-        block.clear();
         since_change = 0;
     }
 

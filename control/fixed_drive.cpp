@@ -3,8 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <complex>
-#include <span>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -30,21 +28,14 @@ PointResult run_fixed_point(Plant& plant, double frequency_hz, double amplitude,
     PointResult result;
     PointRecorder recorder(plant, frequency_hz, 0.0, result);
     result.amplitude_final = amplitude;
-    std::vector<double> window;  // values (periods or their block means) after the transient
-    std::vector<std::complex<double>> phasors;
-    BlockAverage block(options.average_periods);
+    WindowValues window(options.average_periods);  // after the transient
     while (result.periods_simulated < options.max_periods) {
         const double rms = recorder.run(amplitude);
         if (result.periods_simulated <= options.transient_periods) continue;
         const auto& harmonics = result.periods.back().harmonics;
         const bool phase = options.phase_test && !harmonics.empty();
-        if (!block.add(rms, phase ? &harmonics.front() : nullptr)) continue;
-        window.push_back(block.value());
-        if (const auto fundamental = block.fundamental()) phasors.push_back(*fundamental);
-        const auto verdict = assess_steady(window, options,
-                                           phasors.size() == window.size()
-                                               ? std::span<const std::complex<double>>(phasors)
-                                               : std::span<const std::complex<double>>());
+        if (!window.add(rms, phase ? &harmonics.front() : nullptr)) continue;
+        const auto verdict = assess_steady(window.values(), options, window.phasors());
         if (!verdict) continue;
         Decision decision;
         decision.period = result.periods_simulated - 1;
