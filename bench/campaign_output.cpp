@@ -146,7 +146,8 @@ void write_campaign_output(const CampaignConfig& config, const CampaignResult& r
     }
     // A controlled level in g, a fixed drive's amplitude in its own unit.
     const std::string unit = level_unit(config);
-    if (config.campaign.output.uff) {
+    // A run from rest has no levels: no transfer function to write.
+    if (config.campaign.output.uff && !result.levels.empty()) {
         std::vector<id::Uff58Record> records;
         for (const auto& level : result.levels) {
             char description[128];

@@ -3,8 +3,10 @@
 // the config's errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
+#include <filesystem>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -12,11 +14,13 @@
 
 #include "bench/campaign.hpp"
 #include "bench/campaign_config.hpp"
+#include "bench/campaign_output.hpp"
 #include "bench/campaign_plan.hpp"
 #include "bench/checkpoint_store.hpp"
 #include "bench/sweep_checkpoint.hpp"
 #include "campaign_fixtures.hpp"
 #include "config/errors.hpp"
+#include "core/text_file.hpp"
 #include "core/units.hpp"
 
 namespace sb::bench {
@@ -101,6 +105,24 @@ TEST(TransientRun, ALinearSpecimenFromRestFollowsTheClosedForm) {
         EXPECT_LE(row[2 + 2], row[2 + 3 + 2]);  // min <= max of disp_table
         EXPECT_GT(row[2 + 3 + 2] - row[2 + 2], 0.0);
     }
+}
+
+TEST(TransientRun, ItsDirectoryHoldsTheTimeHistoriesAndNoTransferFunction) {
+    // No points and no levels: points.csv is its header (the directory stays a recording
+    // that `identify` reads), and there is no frf.uff of no records.
+    const CampaignConfig config = load_campaign_config_text(kSdof, "from-rest.toml");
+    const CampaignResult result = test::run_on_one_thread(config);
+    const auto dir = test::fresh_dir("transient-output");
+    write_campaign_output(config, result, {dir, kSdof, "test"});
+    const std::string sweep = result.sweeps.front().key;
+    const std::string series = read_text_file(dir / "transient" / (sweep + ".csv"));
+    EXPECT_EQ(std::count(series.begin(), series.end(), '\n'), 1 + 64 * 64);
+    EXPECT_TRUE(std::filesystem::exists(dir / "transient" / (sweep + "_envelope.csv")));
+    const std::string points = read_text_file(dir / "points.csv");
+    EXPECT_EQ(std::count(points.begin(), points.end(), '\n'), 1) << points;
+    EXPECT_FALSE(std::filesystem::exists(dir / "frf.uff"));
+    EXPECT_TRUE(std::filesystem::exists(dir / "recording.toml"));
+    std::filesystem::remove_all(dir);
 }
 
 /// kSdof run for `duration_s` with damper pd at the table, `tables` its [dampers.pd.*]
