@@ -93,18 +93,22 @@ for key in "${keys[@]}"; do
             exit 2
         }
         settle=$(awk -v r="${density[$material]}" 'BEGIN { printf "%.3g", 3e-6 * sqrt(r / 7900) }')
-        matter=(--set dampers.pd.particles.density_kg_m3=${density[$material]}
-                --set dampers.pd.contact.restitution=${restitution[$material]})
+        matter=(--set "dampers.pd.particles.density_kg_m3=${density[$material]}"
+                --set "dampers.pd.contact.restitution=${restitution[$material]}")
         peak_paper=${paper4[$kind-$material]}
         levels=0.57684,0.86526,1.44210
         frequencies=90,110
         [[ ${density[$material]%.*} -le 7900 ]] || frequencies=75,$frequencies
     fi
-    stiff=(--set dampers.pd.contact.normal_stiffness=1e5 --set dampers.pd.settle.dt_s=$settle)
-    part=(--set dampers.pd.particles.count=$count --seeds 1)
+    stiff=(--set dampers.pd.contact.normal_stiffness=1e5 --set "dampers.pd.settle.dt_s=$settle")
+    part=(--set "dampers.pd.particles.count=$count" --seeds 1)
     scale=(--scale 1)
     if [[ $kind == grid ]]; then
-        part=("${quarter[@]}" --set dampers.pd.particles.count=$(((count + 2) / 4)) --seeds 2)
+        share=$(((count + 2) / 4))
+        # 1156 aluminium spheres do not pour into a quarter with the grid (the light bed packs
+        # less densely: 1153 fit, 0.3 % less mass than steel's count)
+        [[ $material != al ]] || share=1153
+        part=("${quarter[@]}" --set "dampers.pd.particles.count=$share" --seeds 2)
         scale=(--scale 4)
     fi
     if [[ ! -f $out/$key/characterization.csv ]]; then
@@ -113,7 +117,7 @@ for key in "${keys[@]}"; do
             --out "$out/$key" > "$out/$key.log" 2>&1
     fi
     "$sb" predict "$root/configs/paper002-$kind.toml" "${stiff[@]}" "${matter[@]}" \
-        --set dampers.pd.particles.count=$count --set "campaign.frequencies.values_hz=[$grid_hz]" \
+        --set "dampers.pd.particles.count=$count" --set "campaign.frequencies.values_hz=[$grid_hz]" \
         --set structure.damping.default_ratio="$zeta" --set "campaign.drive.amplitudes=[$drive]" \
         --characterization "$out/$key/characterization.csv" "${scale[@]}" \
         --out "$out/predicted-$key$suffix" --quiet > /dev/null
