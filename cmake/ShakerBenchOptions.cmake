@@ -12,6 +12,23 @@ if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_L
   target_compile_options(sb_warnings INTERFACE -Wno-restrict)
 endif()
 
+# The default build targets the baseline of the architecture, so that a result is the same on
+# every machine. SB_NATIVE_ARCH uses this machine's instructions (AVX2, AVX-512) for speed;
+# without SB_FUSED_MULTIPLY_ADD the compiler may not fuse a*b+c into one rounding
+# (-ffp-contract=off), which keeps the DEM's arithmetic bitwise the default build's; with it
+# every fused product rounds once instead of twice, so trajectories part in the last bits and,
+# the beds being chaotic, a run is another filling's (docs/performance.md). Eigen's vectorised
+# reductions over long vectors (the structure's modal products) take the wider registers'
+# summation order in either case.
+if(SB_NATIVE_ARCH)
+  add_compile_options(-march=native)
+  if(NOT SB_FUSED_MULTIPLY_ADD)
+    add_compile_options(-ffp-contract=off)
+  endif()
+elseif(SB_FUSED_MULTIPLY_ADD)
+  message(FATAL_ERROR "SB_FUSED_MULTIPLY_ADD needs SB_NATIVE_ARCH (the baseline has no FMA)")
+endif()
+
 add_library(sb_sanitizers INTERFACE)
 add_library(sb::sanitizers ALIAS sb_sanitizers)
 if(SB_SANITIZE OR SB_FUZZ)
