@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# Paper 002's Tables 2 and 4: the resonance peak of the acceleration at the damper against the
-# mass fill and the particles' material, with and without the obstacle grid, predicted from
-# the damper's describing function.
+# Paper 002's Tables 2, 3 and 4: the resonance peak of the acceleration at the damper against
+# the mass fill, the particles' size and their material, with and without the obstacle grid,
+# predicted from the damper's describing function.
 #
-#   validation/paper002/table2.sh OUT [KEY ...]   # e.g. nogrid-90 grid-50 grid-90-pb (default: Table 2)
+#   validation/paper002/table2.sh OUT [KEY ...]   # e.g. nogrid-90 grid-50 grid-90-pb grid-90-d1.5 (default: Table 2)
 #   (shakerbench from build/release, the README's build, or $SHAKERBENCH)
 #
 # DAMPER is nogrid or grid, FILL 50, 60, 70, 80 or 90 (Table 1's masses: 105, 147, 189 g
@@ -18,7 +18,12 @@
 # peak of Table 2 lies below 20 m/s^2 and 110 Hz, so a material is characterised at 8, 12
 # and 20 m/s^2 and at 90 and 110 Hz only (a prediction above 110 Hz holds that edge, and says
 # so), and at 75 Hz as well for the beds heavier than steel's (brass and lead load the
-# beam's resonance below 90 Hz).
+# beam's resonance below 90 Hz). DAMPER-90-dSIZE is Table 3 (d1, d1.5: steel balls of 1 and
+# 1.5 mm): the mass of steel's 90 % in spheres of that size (8 and 2.37 times as many), the
+# same 1e5 N/m contact (the resting bed's own mode, about sqrt(k/m) over the layers, rises as
+# the spheres shrink, and the overlap under the bed's weight falls, so the stiffness chosen
+# for 2 mm holds; the contact time, and with it the step, shrinks as d^1.5), on the materials'
+# reduced grid of levels and frequencies.
 #
 # Per damper and fill the damper alone is characterised at four
 # peak accelerations (8, 12, 20, 50 m/s^2: RMS 0.577, 0.865, 1.442, 3.605 g, around Table 2's
@@ -40,7 +45,7 @@
 set -euo pipefail
 export LC_ALL=C  # seq and awk print decimal points
 if [[ $# -lt 1 ]]; then
-    echo "usage: $0 OUT [KEY ...]   (nogrid-50 ... grid-90, fills 50 60 70 80 90; nogrid-90-al ... grid-90-pb)" >&2
+    echo "usage: $0 OUT [KEY ...]   (nogrid-50 ... grid-90, fills 50 60 70 80 90; nogrid-90-al ... grid-90-pb; nogrid-90-d1 ... grid-90-d1.5)" >&2
     exit 2
 fi
 out=$1
@@ -53,6 +58,8 @@ declare -A density=([al]=2700 [zro2]=5850 [brass]=8500 [pb]=11343.7)
 declare -A restitution=([al]=0.6 [zro2]=0.9 [brass]=0.8 [pb]=0.3)
 declare -A paper4=([nogrid-al]=47.4 [nogrid-zro2]=36.1 [nogrid-brass]=32.5 [nogrid-pb]=33.2
                    [grid-al]=22.5 [grid-zro2]=11.4 [grid-brass]=9 [grid-pb]=8.9)
+# Table 3: the paper's peak without and with the grid [m/s^2] for 1 and 1.5 mm steel balls
+declare -A paper3=([nogrid-d1]=27.9 [nogrid-d1.5]=30.7 [grid-d1]=8.6 [grid-d1.5]=10)
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
 sb=${SHAKERBENCH:-$root/build/release/apps/shakerbench}
@@ -87,7 +94,19 @@ for key in "${keys[@]}"; do
     settle=3e-6
     levels=0.57684,0.86526,1.44210,3.60525
     frequencies=90,110,132
-    if [[ -n $material ]]; then
+    if [[ $material == d* ]]; then
+        [[ $fill == 90 && -n ${paper3[$kind-$material]:-} ]] || {
+            echo "$0: no $key (Table 3: nogrid-90-d1, nogrid-90-d1.5, grid-90-d1, grid-90-d1.5)" >&2
+            exit 2
+        }
+        size_mm=${material#d}
+        count=$(awk -v n="$count" -v d="$size_mm" 'BEGIN { printf "%d", n * (2 / d) ^ 3 + 0.5 }')
+        settle=$(awk -v d="$size_mm" 'BEGIN { printf "%.3g", 3e-6 * (d / 2) ^ 1.5 }')
+        matter=(--set "dampers.pd.particles.diameter_m=$(awk -v d="$size_mm" 'BEGIN { print d / 1000 }')")
+        peak_paper=${paper3[$kind-$material]}
+        levels=0.57684,0.86526,1.44210
+        frequencies=90,110
+    elif [[ -n $material ]]; then
         [[ $fill == 90 && -n ${density[$material]:-} ]] || {
             echo "$0: no $key (Table 4: nogrid-90-MATERIAL, grid-90-MATERIAL; al zro2 brass pb)" >&2
             exit 2
