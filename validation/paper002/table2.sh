@@ -94,6 +94,10 @@ for key in "${keys[@]}"; do
     settle=3e-6
     levels=0.57684,0.86526,1.44210,3.60525
     frequencies=90,110,132
+    if [[ -n $material ]]; then  # Tables 3 and 4: the reduced grid (above)
+        levels=0.57684,0.86526,1.44210
+        frequencies=90,110
+    fi
     if [[ $material == d* ]]; then
         [[ $fill == 90 && -n ${paper3[$kind-$material]:-} ]] || {
             echo "$0: no $key (Table 3: nogrid-90-d1, nogrid-90-d1.5, grid-90-d1, grid-90-d1.5)" >&2
@@ -104,8 +108,6 @@ for key in "${keys[@]}"; do
         settle=$(awk -v d="$size_mm" 'BEGIN { printf "%.3g", 3e-6 * (d / 2) ^ 1.5 }')
         matter=(--set "dampers.pd.particles.diameter_m=$(awk -v d="$size_mm" 'BEGIN { print d / 1000 }')")
         peak_paper=${paper3[$kind-$material]}
-        levels=0.57684,0.86526,1.44210
-        frequencies=90,110
     elif [[ -n $material ]]; then
         [[ $fill == 90 && -n ${density[$material]:-} ]] || {
             echo "$0: no $key (Table 4: nogrid-90-MATERIAL, grid-90-MATERIAL; al zro2 brass pb)" >&2
@@ -115,8 +117,6 @@ for key in "${keys[@]}"; do
         matter=(--set "dampers.pd.particles.density_kg_m3=${density[$material]}"
                 --set "dampers.pd.contact.restitution=${restitution[$material]}")
         peak_paper=${paper4[$kind-$material]}
-        levels=0.57684,0.86526,1.44210
-        frequencies=90,110
         [[ ${density[$material]%.*} -le 7900 ]] || frequencies=75,$frequencies
     fi
     stiff=(--set dampers.pd.contact.normal_stiffness=1e5 --set "dampers.pd.settle.dt_s=$settle")
