@@ -548,10 +548,9 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
                                                           SweepLocal& loc) {
     const auto& es = enclosure_state_;
     const double frac = options_.max_overlap_fraction;
-    const auto nn = static_cast<std::uint32_t>(state_.size());
     Accumulated a;
     const Eigen::Vector3d xi = state_.x[i], vi = state_.v[i], wi = state_.w[i];
-    const double ri = state_.radius[i], imi = state_.inv_mass[i], iii = state_.inv_inertia[i];
+    const double ri = state_.radius[i];
     const std::size_t ci = class_count_ > 0 ? size_class_[i] : 0;
     bool overlap = false;
     // Pairs: slots of i's Verlet list (j > i); the partner's share goes to the slot.
@@ -598,7 +597,8 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
                 k.m_t = mc.m_t;
                 k.i_eff = mc.i_eff;
             } else {
-                const double imj = inv_mass[j];
+                // without size classes (polydisperse beds) only; read here, not per particle
+                const double imi = inv_mass[i], iii = inv_inertia[i], imj = inv_mass[j];
                 k.m_eff = 1.0 / (imi + imj);
                 k.r_eff = ri * rj / (ri + rj);
                 k.m_t = 1.0 / (3.5 * (imi + imj));
@@ -674,6 +674,7 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
                     k.m_t = mc.m_t;
                     k.i_eff = mc.i_eff;
                 } else {
+                    const double imi = state_.inv_mass[i], iii = state_.inv_inertia[i];
                     k.m_eff = 1.0 / imi;
                     k.m_t = 1.0 / (3.5 * imi);
                     k.i_eff = 1.0 / iii;
@@ -702,8 +703,9 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
                 a.wm += Eigen::Vector3d((xc - es.position_m).cross(-f) - r.mr);
                 ++loc.contacts;
                 if (loc.log != nullptr) {
-                    loc.log->push_back({static_cast<std::uint32_t>(i), nn + wall, delta, n, f, ti,
-                                        xc, r.f_spring, r.fn - r.f_spring});
+                    loc.log->push_back({static_cast<std::uint32_t>(i),
+                                        static_cast<std::uint32_t>(state_.size()) + wall, delta, n,
+                                        f, ti, xc, r.f_spring, r.fn - r.f_spring});
                 }
             });
     }
@@ -745,8 +747,10 @@ SB_ALWAYS_INLINE void Solver::finish_particle(std::size_t i, const Accumulated& 
     v += dt * (state_.inv_mass[i] * f + gravity_);
     w += (dt * state_.inv_inertia[i]) * t;
     x += dt * v;
-    // one NaN or infinity anywhere makes the sum non-finite (cheaper than allFinite x3)
-    if (!std::isfinite(x.sum() + v.sum() + w.sum()) && loc.not_finite == kNoParticle) {
+    // One NaN or infinity anywhere makes the sum non-finite (cheaper than allFinite). v needs
+    // no term of its own: x was finite (else the last step stopped), so a non-finite v makes
+    // x = x + dt v non-finite in this same step.
+    if (!std::isfinite(x.sum() + w.sum()) && loc.not_finite == kNoParticle) {
         loc.not_finite = static_cast<int>(i);
     }
     // Verlet criterion for the next step: pair distances are the same in any rigidly moving
@@ -784,8 +788,10 @@ void Solver::sweep(const Law& law, double dt) {
         for (std::size_t i = 0; i < n; ++i) {
             const Accumulated a = own_contacts<Law>(law, i, dt, loc[0]);
             finish_particle(i, a, dt, loc[0]);
-            wall_force += a.wf;
-            wall_moment += a.wm;
+            if (wall_count_[i] != 0) {  // a sphere off the walls adds exact zeros
+                wall_force += a.wf;
+                wall_moment += a.wm;
+            }
         }
     } else {
         // Same arithmetic per particle in two phases: every particle's own contacts (reading

@@ -116,6 +116,25 @@ TEST(SolverGuard, NonFiniteEnclosurePoseIsReportedAsNotFinite) {
                  std::invalid_argument);
 }
 
+TEST(SolverGuard, NonFiniteVelocityIsReportedInTheStepItAppears) {
+    // The guard sums x and the spin only: a non-finite v must still stop the step in which it
+    // appears, through x = x + dt v, and name its particle.
+    const SolverOptions o = guarded_box(2);
+    for (const double bad : {kNaN, std::numeric_limits<double>::infinity(),
+                             -std::numeric_limits<double>::infinity()}) {
+        Solver s(o, test::particles_at({{2.5e-3, 2.5e-3, 2.5e-3}, {7.5e-3, 7.5e-3, 2.5e-3}}, 1e-3,
+                                       {{0.0, 0.0, 0.0}, {0.0, bad, 0.0}}));
+        try {
+            s.step(1e-6);
+            FAIL() << "no guard fired for v = " << bad;
+        } catch (const SimulationError& e) {
+            EXPECT_EQ(e.kind, SimulationError::Kind::not_finite);
+            EXPECT_EQ(e.particle_id, 1);
+            EXPECT_EQ(e.step, 0);
+        }
+    }
+}
+
 TEST(HorizontalLayers, WithTheAxisVerticalTheLayersAreSlabsAlongLocalZ) {
     EnclosureOptions o = grid_box();
     const Enclosure enc(o);
