@@ -404,6 +404,59 @@ Solver::LockedBody Solver::locked_body() const {
     return body;
 }
 
+namespace {
+
+/// to_local_frame over particles [lo, hi).
+double local_frame_range(const EnclosureState& es, const Eigen::Vector3d* x,
+                         const Eigen::Vector3d* xb, Eigen::Vector3d* xl, std::size_t lo,
+                         std::size_t hi, bool rotated, bool measure_displacement) {
+    double max_disp2 = 0.0;
+    if (rotated && measure_displacement) {
+        for (std::size_t i = lo; i < hi; ++i) {
+            const Eigen::Vector3d l = es.to_local(x[i]);
+            xl[i] = l;
+            max_disp2 = std::max(max_disp2, (l - xb[i]).squaredNorm());
+        }
+    } else if (rotated) {
+        for (std::size_t i = lo; i < hi; ++i) xl[i] = es.to_local(x[i]);
+    } else if (measure_displacement) {
+        for (std::size_t i = lo; i < hi; ++i) {
+            max_disp2 = std::max(max_disp2, (x[i] - es.position_m - xb[i]).squaredNorm());
+        }
+    }
+    return max_disp2;
+}
+
+}  // namespace
+
+double Solver::to_local_frame(bool measure_displacement) {
+    // With the enclosure turned, the frame change is stored for the sweep's wall tests;
+    // axis-aligned, they subtract the origin themselves and nothing is stored unless the
+    // list is rebuilt. The largest displacement does not depend on the threads' shares.
+    const std::size_t n = state_.size();
+    const int used = threads_for(thread_count(), n, grain());
+    if (used == 1) {
+        return local_frame_range(enclosure_state_, state_.x.data(), x_at_build_.data(),
+                                 local_x_.data(), 0, n, rotated_, measure_displacement);
+    }
+    double max_disp2 = 0.0;
+#pragma omp parallel num_threads(used) reduction(max : max_disp2)
+    {
+        const auto t = static_cast<std::size_t>(omp_get_thread_num());
+        const auto u = static_cast<std::size_t>(used);
+        max_disp2 = local_frame_range(enclosure_state_, state_.x.data(), x_at_build_.data(),
+                                      local_x_.data(), n * t / u, n * (t + 1) / u, rotated_,
+                                      measure_displacement);
+    }
+    return max_disp2;
+}
+
+void Solver::fill_local_x() {
+    if (rotated_) return;  // to_local_frame stored it
+    const auto& es = enclosure_state_;
+    for (std::size_t i = 0; i < state_.size(); ++i) local_x_[i] = state_.x[i] - es.position_m;
+}
+
 void Solver::build_neighbors() {
     // Uniform grid in the enclosure frame (cell >= largest diameter + skin), counting sort,
     // then per particle the candidates j > i within r_i + r_j + skin, sorted by j.
@@ -634,11 +687,12 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
     }
     // Walls and obstacles in the enclosure frame, matched by id with the previous step's for
     // the history.
-    const Eigen::Vector3d xl = rotated_ ? es.to_local(xi) : Eigen::Vector3d(xi - es.position_m);
     std::uint32_t count = 0;
     // A sphere deep inside is inside (deep_inside is false for a non-finite xl), so the
-    // outside guard and the wall tests only run near the walls.
-    if (!deep_inside(xl)) {
+    // outside guard and the wall tests only run near the walls. The centre in this step's
+    // frame: stored by step() for a turned enclosure, else the shift by the origin.
+    if (rotated_ ? !deep_inside(local_x_[i]) : !deep_inside(xi - es.position_m)) {
+        const Eigen::Vector3d xl = rotated_ ? local_x_[i] : Eigen::Vector3d(xi - es.position_m);
         const bool inside = has_obstacles_ ? enclosure_.contains(xl) : enclosure_.inside_walls(xl);
         if (!inside && loc.outside == kNoParticle) loc.outside = static_cast<int>(i);
         const std::size_t base = i * wall_cap_;
@@ -753,12 +807,6 @@ SB_ALWAYS_INLINE void Solver::finish_particle(std::size_t i, const Accumulated& 
     if (!std::isfinite(x.sum() + w.sum()) && loc.not_finite == kNoParticle) {
         loc.not_finite = static_cast<int>(i);
     }
-    // Verlet criterion for the next step: pair distances are the same in any rigidly moving
-    // frame, so this step's enclosure frame measures the displacement since the build as
-    // well as the next one's.
-    const auto& es = enclosure_state_;
-    const Eigen::Vector3d xl = rotated_ ? es.to_local(x) : Eigen::Vector3d(x - es.position_m);
-    loc.max_disp2 = std::max(loc.max_disp2, (xl - x_at_build_[i]).squaredNorm());
 }
 
 template <class Law>
@@ -815,11 +863,9 @@ void Solver::sweep(const Law& law, double dt) {
     wall_force_ = wall_force;
     wall_moment_ = wall_moment;
     contact_count_ = 0;
-    max_disp2_ = 0.0;
     int outside = kNoParticle, overlap = kNoParticle, not_finite = kNoParticle;
     for (int t = 0; t < used; ++t) {
         contact_count_ += loc[t].contacts;
-        max_disp2_ = std::max(max_disp2_, loc[t].max_disp2);
         outside = std::min(outside, loc[t].outside);
         overlap = std::min(overlap, loc[t].overlap);
         not_finite = std::min(not_finite, loc[t].not_finite);
@@ -862,13 +908,19 @@ void Solver::step(double dt) {
         lock_force_.setZero();
         lock_moment_.setZero();
     }
-    if (x_at_build_.empty() || 4.0 * max_disp2_ >= skin_ * skin_) {
-        const auto& es = enclosure_state_;
-        for (std::size_t i = 0; i < state_.size(); ++i) local_x_[i] = es.to_local(state_.x[i]);
-        build_neighbors();
-    }
     // axis-aligned enclosure (the usual shaker set-up): local = world - origin
     rotated_ = enclosure_state_.rotation != Eigen::Matrix3d::Identity();
+    // Every centre in this step's enclosure frame, once: the sweep's wall tests read it, and
+    // so does the Verlet criterion. Pair distances are the same in any rigidly moving frame,
+    // so the displacement since the build, measured in this frame, bounds how much closer
+    // two spheres came; the lists are sorted by partner, so when they are rebuilt changes no
+    // result as long as they hold every touching pair.
+    const bool built = !x_at_build_.empty();
+    const double max_disp2 = to_local_frame(built);
+    if (!built || 4.0 * max_disp2 >= skin_ * skin_) {
+        fill_local_x();
+        build_neighbors();
+    }
     std::visit(
         [&](const auto& nm, const auto& dm, const auto& tg, const auto& rl) {
             using L = ComposedLaw<std::decay_t<decltype(nm)>, std::decay_t<decltype(dm)>,

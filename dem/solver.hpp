@@ -202,13 +202,18 @@ class Solver {
     /// Per-thread results of a sweep.
     struct SweepLocal {
         std::size_t contacts = 0;
-        double max_disp2 = 0.0;  ///< largest squared displacement since the list build
         int outside = std::numeric_limits<int>::max();
         int overlap = std::numeric_limits<int>::max();
         int not_finite = std::numeric_limits<int>::max();
         std::vector<EnergyRecord>* log = nullptr;
     };
 
+    /// For a turned enclosure, local_x_ = every centre in this step's enclosure frame. Returns
+    /// the largest squared displacement from x_at_build_ in that frame if
+    /// `measure_displacement`, else 0.
+    double to_local_frame(bool measure_displacement);
+    /// local_x_ for a list build (an axis-aligned enclosure's, which to_local_frame skips).
+    void fill_local_x();
     /// Verlet list from local_x_ (the enclosure-frame positions).
     void build_neighbors();
     /// True if a sphere centred at xl certainly touches no wall or obstacle, whatever its
@@ -296,8 +301,7 @@ class Solver {
     double deep_rho2_ = -1.0;
     bool track_energy_ = true;
     Eigen::Vector3d gravity_ = Eigen::Vector3d::Zero();
-    double max_disp2_ = 0.0;  ///< at the end of the last step, since the list build
-    bool rotated_ = false;    ///< this step's enclosure rotation is not the identity
+    bool rotated_ = false;  ///< this step's enclosure rotation is not the identity
     std::vector<std::uint32_t> wall_count_, prev_wall_count_, wall_id_, prev_wall_id_;
     std::vector<Eigen::Vector3d> wall_hist_, prev_wall_hist_;
     std::vector<double> wall_delta_, wall_kl_;
