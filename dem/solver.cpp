@@ -604,7 +604,6 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
     Accumulated a;
     const Eigen::Vector3d xi = state_.x[i], vi = state_.v[i], wi = state_.w[i];
     const double ri = state_.radius[i];
-    const std::size_t ci = class_count_ > 0 ? size_class_[i] : 0;
     bool overlap = false;
     // Pairs: slots of i's Verlet list (j > i); the partner's share goes to the slot.
     {
@@ -616,8 +615,6 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
         const std::uint32_t* list = nbr_list_.data();
         const Eigen::Vector3d* v = state_.v.data();
         const Eigen::Vector3d* w = state_.w.data();
-        const double* inv_mass = state_.inv_mass.data();
-        const double* inv_inertia = state_.inv_inertia.data();
         for (std::uint32_t q = nbr_begin_[i]; q < q_end; ++q) {
             const std::uint32_t j = list[q];
             const Eigen::Vector3d d = xi - x[j];
@@ -644,13 +641,16 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
             const Eigen::Vector3d bj = (rj - 0.5 * delta) * n;
             const Eigen::Vector3d vrel = vi + wi.cross(bi) - v[j] - w[j].cross(bj);
             if (class_count_ > 0) {  // no division per contact
-                const MassConstants& mc = class_pair_[ci * class_count_ + size_class_[j]];
+                const MassConstants& mc =
+                    class_pair_[size_class_[i] * class_count_ + size_class_[j]];
                 k.m_eff = mc.m_eff;
                 k.r_eff = mc.r_eff;
                 k.m_t = mc.m_t;
                 k.i_eff = mc.i_eff;
             } else {
                 // without size classes (polydisperse beds) only; read here, not per particle
+                const double* inv_mass = state_.inv_mass.data();
+                const double* inv_inertia = state_.inv_inertia.data();
                 const double imi = inv_mass[i], iii = inv_inertia[i], imj = inv_mass[j];
                 k.m_eff = 1.0 / (imi + imj);
                 k.r_eff = ri * rj / (ri + rj);
@@ -695,6 +695,8 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
         const Eigen::Vector3d xl = rotated_ ? local_x_[i] : Eigen::Vector3d(xi - es.position_m);
         const bool inside = has_obstacles_ ? enclosure_.contains(xl) : enclosure_.inside_walls(xl);
         if (!inside && loc.outside == kNoParticle) loc.outside = static_cast<int>(i);
+        a.wf.setZero();
+        a.wm.setZero();
         const std::size_t base = i * wall_cap_;
         const PairCoefficients& wall_coefficients = coeff_[1];
         const PairCoefficients& rod_coefficients = coeff_[2];
@@ -856,6 +858,7 @@ void Solver::sweep(const Law& law, double dt) {
             for (std::size_t i = lo; i < hi; ++i) finish_particle(i, own_[i], dt, loc[t]);
         }
         for (std::size_t i = 0; i < n; ++i) {
+            if (wall_count_[i] == 0) continue;  // a sphere off the walls adds exact zeros
             wall_force += own_[i].wf;
             wall_moment += own_[i].wm;
         }

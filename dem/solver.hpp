@@ -197,7 +197,9 @@ class Solver {
     /// Sums over a particle's own contacts.
     struct Accumulated {
         Eigen::Vector3d f = Eigen::Vector3d::Zero(), t = Eigen::Vector3d::Zero();
-        Eigen::Vector3d wf = Eigen::Vector3d::Zero(), wm = Eigen::Vector3d::Zero();
+        /// Force and moment on the walls: set (from zero) only for a particle with wall
+        /// contacts (wall_count_ > 0), and read only for one.
+        Eigen::Vector3d wf, wm;
     };
     /// Per-thread results of a sweep.
     struct SweepLocal {
