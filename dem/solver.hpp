@@ -197,8 +197,8 @@ class Solver {
     /// Sums over a particle's own contacts.
     struct Accumulated {
         Eigen::Vector3d f = Eigen::Vector3d::Zero(), t = Eigen::Vector3d::Zero();
-        /// Force and moment on the walls: set (from zero) only for a particle with wall
-        /// contacts (wall_count_ > 0), and read only for one.
+        /// Force and moment on the walls: zeroed only for a particle near a wall (the wall
+        /// tests run), read only for one with wall contacts (wall_count_ > 0).
         Eigen::Vector3d wf, wm;
     };
     /// Per-thread results of a sweep.
