@@ -140,6 +140,9 @@ struct LockOptions {
     Violations validate() const;
 };
 
+/// The smallest Verlet skin an adapting solver takes, as a share of the configured one [-].
+inline constexpr double kMinSkinShare = 0.1;
+
 /// Everything the solver needs.
 struct SolverOptions {
     ParticleOptions particles{};
@@ -150,8 +153,13 @@ struct SolverOptions {
     double max_overlap_fraction = 0.5;  ///< guard: overlap / radius above this throws [-]
     /// Verlet skin of the broad phase as a fraction of the largest diameter [-]; the list is
     /// rebuilt when a particle has moved more than half the skin in the enclosure frame
-    /// (0 = rebuild every step).
+    /// (0 = rebuild every step). With adapt_neighbor_skin, the largest skin the solver uses.
     double neighbor_skin_fraction = 0.1;
+    /// Choose the skin at each rebuild, between kMinSkinShare of neighbor_skin_fraction and
+    /// neighbor_skin_fraction, so that the candidate tests the skin adds cost about what the
+    /// rebuilds cost (Solver::build_neighbors). The lists hold every touching pair whatever the
+    /// skin and are sorted by partner, so results are bitwise the same as with a fixed skin.
+    bool adapt_neighbor_skin = true;
     int threads = 1;  ///< OpenMP threads; 0 = OpenMP default
     /// Smallest number of particles per thread: every per-step loop (local positions, the
     /// contact sweep, the broad phase) runs on min(threads, N / parallel_grain) threads, so

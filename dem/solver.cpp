@@ -39,6 +39,13 @@ const char* kind_name(SimulationError::Kind k) {
 
 constexpr int kNoParticle = std::numeric_limits<int>::max();
 
+/// What rebuilding the neighbour list costs per particle, in candidate tests of the sweep
+/// (the frame change, the grid's counting sort, the scan of 27 cells, the sort of the list,
+/// the merge of the pair slots and the reverse index, against one distance test). Measured,
+/// not derived: with 6, 12, 24, 36 and 48 the instructions per step of the damper benchmarks
+/// (docs/performance.md) were least at 24-36 and within 2 % of that over the whole range.
+constexpr double kRebuildCostPerParticle = 24.0;
+
 }  // namespace
 
 // Forces inlining of the per-particle kernels into the sweep loop (not under the sanitizers,
@@ -224,11 +231,12 @@ Solver::Solver(const SolverOptions& options, const ParticleSet& particles,
     double dmax = 0.0;
     for (double r : state_.radius) dmax = std::max(dmax, 2.0 * r);
     skin_ = options_.neighbor_skin_fraction * dmax;
+    skin_max_ = skin_;
     const double pad = dmax;
     grid_lo_ = enclosure_.lower() - Eigen::Vector3d::Constant(pad);
     const Eigen::Vector3d ext =
         enclosure_.upper() - enclosure_.lower() + Eigen::Vector3d::Constant(2.0 * pad);
-    cell_ = dmax + skin_;
+    cell_ = dmax + skin_max_;
     for (int a = 0; a < 3; ++a) {
         dims_[a] = std::max(1, static_cast<int>(std::floor(ext[a] / cell_)));
     }
@@ -457,9 +465,27 @@ void Solver::fill_local_x() {
     for (std::size_t i = 0; i < state_.size(); ++i) local_x_[i] = state_.x[i] - es.position_m;
 }
 
+void Solver::adapt_skin() {
+    // A step costs, besides its contacts, the candidate tests of the pairs the skin adds,
+    // c(s), and a share of the rebuilds, b / s (n particles every L steps, L proportional to
+    // s: the fastest particle crosses half the skin). The sum is least where s c'(s) = b / s.
+    // s c'(s) is taken as twice the candidates of the list just used that lay in the outer
+    // half of its skin (a bed resting in contact has many pairs just apart, which every skin
+    // holds: counting the whole shell would shrink the skin too far), b / s as the rebuild
+    // cost over the steps that list lasted; one Newton step on s gives
+    // s* = s sqrt(rebuild cost / (s c'(s))). The factor is bounded so that one odd interval
+    // (an impact, a release) moves the skin by at most a factor of two.
+    const double steps = static_cast<double>(std::max<std::int64_t>(1, step_ - step_at_build_));
+    const double shell = 2.0 * static_cast<double>(outer_half_);
+    const double rebuild = kRebuildCostPerParticle * static_cast<double>(state_.size()) / steps;
+    const double factor = shell > 0.0 ? std::clamp(std::sqrt(rebuild / shell), 0.5, 2.0) : 2.0;
+    skin_ = std::clamp(skin_ * factor, kMinSkinShare * skin_max_, skin_max_);
+}
+
 void Solver::build_neighbors() {
     // Uniform grid in the enclosure frame (cell >= largest diameter + skin), counting sort,
     // then per particle the candidates j > i within r_i + r_j + skin, sorted by j.
+    if (options_.adapt_neighbor_skin && !x_at_build_.empty()) adapt_skin();
     const std::size_t n = state_.size();
     const auto ncell = cell_start_.size() - 1;
     const double inv_cell = 1.0 / cell_;
@@ -482,10 +508,12 @@ void Solver::build_neighbors() {
     }
     const int used = threads_for(thread_count(), n, grain());
     nbr_buffers_.resize(static_cast<std::size_t>(used));
+    outer_counts_.assign(static_cast<std::size_t>(used), 0);
     count_.resize(n);
     auto scan = [&](int t) {
         auto& buf = nbr_buffers_[static_cast<std::size_t>(t)];
         buf.clear();
+        std::size_t outer = 0;
         const std::size_t lo = n * static_cast<std::size_t>(t) / static_cast<std::size_t>(used);
         const std::size_t hi = n * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(used);
         for (std::size_t i = lo; i < hi; ++i) {
@@ -508,13 +536,19 @@ void Solver::build_neighbors() {
                         const std::uint32_t j = cell_items_[k];
                         if (j <= i) continue;
                         const double rs = ri + state_.radius[j];
-                        if ((xi - local_x_[j]).squaredNorm() < rs * rs) buf.push_back(j);
+                        const double d2 = (xi - local_x_[j]).squaredNorm();
+                        if (d2 < rs * rs) {
+                            buf.push_back(j);
+                            const double inner = rs - 0.5 * skin_;
+                            if (d2 >= inner * inner) ++outer;
+                        }
                     }
                 }
             }
             std::sort(buf.begin() + static_cast<std::ptrdiff_t>(first), buf.end());
             count_[i] = static_cast<std::uint32_t>(buf.size() - first);
         }
+        outer_counts_[static_cast<std::size_t>(t)] = outer;
     };
     if (used == 1) {
         scan(0);
@@ -583,6 +617,8 @@ void Solver::build_neighbors() {
         for (; t < chunk_.size() - 1; ++t) chunk_[t] = static_cast<std::uint32_t>(n);
     }
     x_at_build_ = local_x_;
+    step_at_build_ = step_;
+    outer_half_ = std::accumulate(outer_counts_.begin(), outer_counts_.end(), std::size_t{0});
     ++neighbor_builds_;
 }
 

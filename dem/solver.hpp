@@ -135,6 +135,8 @@ class Solver {
     std::size_t contact_count() const { return contact_count_; }
     /// Number of neighbour-list (broad phase) rebuilds so far.
     std::int64_t neighbor_builds() const { return neighbor_builds_; }
+    /// Verlet skin of the current neighbour list [m] (SolverOptions::adapt_neighbor_skin).
+    double neighbor_skin() const { return skin_; }
     const ContactLaw& law() const { return law_; }
     const Enclosure& enclosure() const { return enclosure_; }
     /// The energy_layers slabs along gravity, fixed in the enclosure frame at the pose the
@@ -273,7 +275,13 @@ class Solver {
     double cell_ = 0.0;
     int dims_[3]{1, 1, 1};
     std::vector<std::uint32_t> cell_of_, cell_start_, cell_items_, cursor_, count_;
-    double skin_ = 0.0;
+    double skin_ = 0.0;      ///< Verlet skin of the current list [m]
+    double skin_max_ = 0.0;  ///< the configured skin; the grid's cells are sized for it [m]
+    std::int64_t step_at_build_ = 0;
+    /// Candidates of the current list in the outer half of its skin, per thread and in all.
+    std::vector<std::size_t> outer_counts_;
+    std::size_t outer_half_ = 0;
+    void adapt_skin();
     std::vector<std::uint32_t> nbr_begin_, nbr_list_, old_nbr_begin_, old_nbr_list_;
     std::vector<std::vector<std::uint32_t>> nbr_buffers_;
     std::vector<Eigen::Vector3d> x_at_build_;

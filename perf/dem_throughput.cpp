@@ -13,6 +13,11 @@
 //
 // Usage: dem_throughput a|b|c [--threads N] [--warmup STEPS] [--steps STEPS] [--ledger 0|1]
 //                           [--bed FILE] [--count N] [--write-lammps-data FILE]
+//                           [--skin FRACTION] [--adapt-skin 0|1] [--level-g PEAK]
+// --skin: the Verlet skin over the largest diameter (default 0.1; the largest one with
+// --adapt-skin 1, the default; --adapt-skin 0 keeps it fixed, as LAMMPS's). --level-g: the
+// peak acceleration of the shaking in g. The line printed ends with the neighbour-list builds
+// and the skin the run ended with (skin_m).
 // --count (case b): N spheres, the cavity's footprint scaled by N / 5,000 (default 5,000).
 // --bed (case b): settled bed cache; read if present, else settled and written.
 // --write-lammps-data: writes the initial state as a LAMMPS `atom_style sphere` data file
@@ -273,7 +278,7 @@ std::string lammps_vars(const Case& c) {
     std::cerr << "dem_throughput: " << why
               << "\nusage: dem_throughput a|b|c [--threads N] [--warmup STEPS] [--steps STEPS]"
                  " [--ledger 0|1] [--bed FILE] [--count N (case b)] [--write-lammps-data FILE]"
-                 " [--lammps-vars 1]\n";
+                 " [--lammps-vars 1] [--skin FRACTION] [--adapt-skin 0|1] [--level-g PEAK]\n";
     std::exit(2);
 }
 
@@ -281,6 +286,15 @@ long parse_long(const std::string& key, const char* text) {
     char* end = nullptr;
     const long v = std::strtol(text, &end, 10);
     if (end == text || *end != '\0' || v < 0) usage(key + ": expected a non-negative integer");
+    return v;
+}
+
+double parse_fraction(const std::string& key, const char* text) {
+    char* end = nullptr;
+    const double v = std::strtod(text, &end);
+    if (end == text || *end != '\0' || !(v > 0.0 && v <= 1.0)) {
+        usage(key + ": expected a number in (0, 1]");
+    }
     return v;
 }
 
@@ -321,6 +335,17 @@ int main(int argc, char** argv) {
             // read above
         } else if (key == "--bed") {
             bed = value;
+        } else if (key == "--level-g") {
+            char* end = nullptr;
+            const double g = std::strtod(value, &end);
+            if (end == value || *end != '\0' || !(g > 0.0 && g < 1000.0)) {
+                usage(key + ": expected a peak acceleration in g in (0, 1000)");
+            }
+            c.level_m_s2 = g * sb::kStandardGravity;
+        } else if (key == "--adapt-skin") {
+            c.options.adapt_neighbor_skin = parse_long(key, value) != 0;
+        } else if (key == "--skin") {
+            c.options.neighbor_skin_fraction = parse_fraction(key, value);
         } else if (key == "--lammps-vars") {
             print_lammps_vars = parse_long(key, value) != 0;
         } else if (key == "--write-lammps-data") {
@@ -368,11 +393,12 @@ int main(int argc, char** argv) {
         std::printf(
             "case=%s threads=%d ledger=%d particles=%.0f steps=%ld wall_s=%.4f cpu_s=%.4f "
             "us_per_step=%.4g particle_steps_per_s=%.4g particle_steps_per_cpu_s=%.4g "
-            "mean_contacts=%.1f state_hash=%s\n",
+            "mean_contacts=%.1f neighbor_builds=%lld skin_m=%.6g state_hash=%s\n",
             name.c_str(), threads, ledger ? 1 : 0, n, c.steps, wall, cpu,
             1e6 * wall / static_cast<double>(c.steps), n * static_cast<double>(c.steps) / wall,
             n * static_cast<double>(c.steps) / cpu,
-            contacts / static_cast<double>(std::max(1L, c.steps)), state_hash(s).c_str());
+            contacts / static_cast<double>(std::max(1L, c.steps)),
+            static_cast<long long>(s.neighbor_builds()), s.neighbor_skin(), state_hash(s).c_str());
     } catch (const std::exception& e) {
         std::fprintf(stderr, "dem_throughput: %s\n", e.what());
         return 1;
