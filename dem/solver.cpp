@@ -576,8 +576,8 @@ void Solver::build_neighbors() {
     }
     const int used = threads_for(thread_count(), n, grain());
     nbr_buffers_.resize(static_cast<std::size_t>(used));
-    outer_counts_.assign(static_cast<std::size_t>(used), 0);
     count_.resize(n);
+    // Returns the candidates of its particles that lie in the outer half of the skin.
     auto scan = [&](int t) {
         auto& buf = nbr_buffers_[static_cast<std::size_t>(t)];
         buf.clear();
@@ -616,13 +616,14 @@ void Solver::build_neighbors() {
             std::sort(buf.begin() + static_cast<std::ptrdiff_t>(first), buf.end());
             count_[i] = static_cast<std::uint32_t>(buf.size() - first);
         }
-        outer_counts_[static_cast<std::size_t>(t)] = outer;
+        return outer;
     };
+    std::size_t outer_half = 0;  // an integer sum: the same for any thread count
     if (used == 1) {
-        scan(0);
+        outer_half = scan(0);
     } else {
-#pragma omp parallel num_threads(used)
-        scan(omp_get_thread_num());
+#pragma omp parallel num_threads(used) reduction(+ : outer_half)
+        outer_half += scan(omp_get_thread_num());
     }
     // New list; the pair slots (contact flag and tangential history) follow their pairs.
     std::swap(nbr_begin_, old_nbr_begin_);
@@ -686,7 +687,7 @@ void Solver::build_neighbors() {
     }
     x_at_build_ = local_x_;
     step_at_build_ = step_;
-    outer_half_ = std::accumulate(outer_counts_.begin(), outer_counts_.end(), std::size_t{0});
+    outer_half_ = outer_half;
     ++neighbor_builds_;
 }
 

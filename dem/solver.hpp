@@ -278,9 +278,7 @@ class Solver {
     double skin_ = 0.0;      ///< Verlet skin of the current list [m]
     double skin_max_ = 0.0;  ///< the configured skin; the grid's cells are sized for it [m]
     std::int64_t step_at_build_ = 0;
-    /// Candidates of the current list in the outer half of its skin, per thread and in all.
-    std::vector<std::size_t> outer_counts_;
-    std::size_t outer_half_ = 0;
+    std::size_t outer_half_ = 0;  ///< candidates of the current list in the outer half of its skin
     void adapt_skin();
     std::vector<std::uint32_t> nbr_begin_, nbr_list_, old_nbr_begin_, old_nbr_list_;
     std::vector<std::vector<std::uint32_t>> nbr_buffers_;

@@ -289,11 +289,14 @@ long parse_long(const std::string& key, const char* text) {
     return v;
 }
 
-double parse_fraction(const std::string& key, const char* text) {
+/// A number in (0, max].
+double parse_positive(const std::string& key, const char* text, double max) {
     char* end = nullptr;
     const double v = std::strtod(text, &end);
-    if (end == text || *end != '\0' || !(v > 0.0 && v <= 1.0)) {
-        usage(key + ": expected a number in (0, 1]");
+    if (end == text || *end != '\0' || !(v > 0.0 && v <= max)) {
+        std::ostringstream why;
+        why << key << ": expected a number in (0, " << max << "]";
+        usage(why.str());
     }
     return v;
 }
@@ -336,16 +339,11 @@ int main(int argc, char** argv) {
         } else if (key == "--bed") {
             bed = value;
         } else if (key == "--level-g") {
-            char* end = nullptr;
-            const double g = std::strtod(value, &end);
-            if (end == value || *end != '\0' || !(g > 0.0 && g < 1000.0)) {
-                usage(key + ": expected a peak acceleration in g in (0, 1000)");
-            }
-            c.level_m_s2 = g * sb::kStandardGravity;
+            c.level_m_s2 = parse_positive(key, value, 1000.0) * sb::kStandardGravity;
         } else if (key == "--adapt-skin") {
             c.options.adapt_neighbor_skin = parse_long(key, value) != 0;
         } else if (key == "--skin") {
-            c.options.neighbor_skin_fraction = parse_fraction(key, value);
+            c.options.neighbor_skin_fraction = parse_positive(key, value, 1.0);
         } else if (key == "--lammps-vars") {
             print_lammps_vars = parse_long(key, value) != 0;
         } else if (key == "--write-lammps-data") {
