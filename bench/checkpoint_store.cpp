@@ -129,6 +129,22 @@ std::optional<std::string> FileCheckpointStore::load_bed(const std::string& bed_
 
 void FileCheckpointStore::save_bed(const std::string& bed_key, const std::string& text) {
     save_file("settled/" + bed_key + "_" + hash_ + ".csv", text);
+    std::error_code ignored;  // the progress is of no use once the bed is there
+    fs::remove(settling_name(bed_key), ignored);
+}
+
+std::string FileCheckpointStore::settling_name(const std::string& bed_key) const {
+    return (directory_ / "settled" / (bed_key + "_" + hash_ + ".settling.txt")).string();
+}
+
+std::optional<std::string> FileCheckpointStore::load_settling(const std::string& bed_key) {
+    const fs::path file = settling_name(bed_key);
+    if (!fs::exists(file)) return std::nullopt;
+    return read_text_file(file);
+}
+
+void FileCheckpointStore::save_settling(const std::string& bed_key, const std::string& text) {
+    save_file("settled/" + bed_key + "_" + hash_ + ".settling.txt", text);
 }
 
 std::string FileCheckpointStore::result_name(const std::string& result_key) const {
@@ -158,7 +174,7 @@ void MemoryCheckpointStore::open(const std::string& config_hash, bool restart) {
     hash_ = config_hash;
     if (restart) {
         const std::string prefix = hash_ + "/";
-        for (auto* map : {&checkpoints_, &beds_, &results_, &files_}) {
+        for (auto* map : {&checkpoints_, &beds_, &settling_, &results_, &files_}) {
             std::erase_if(*map, [&](const auto& kv) { return kv.first.rfind(prefix, 0) == 0; });
         }
     }
@@ -191,6 +207,17 @@ std::optional<std::string> MemoryCheckpointStore::load_bed(const std::string& be
 void MemoryCheckpointStore::save_bed(const std::string& bed_key, const std::string& text) {
     std::lock_guard<std::mutex> lock(mutex_);
     beds_[hash_ + "/" + bed_key] = text;
+    settling_.erase(hash_ + "/" + bed_key);
+}
+
+std::optional<std::string> MemoryCheckpointStore::load_settling(const std::string& bed_key) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return find(settling_, hash_ + "/" + bed_key);
+}
+
+void MemoryCheckpointStore::save_settling(const std::string& bed_key, const std::string& text) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    settling_[hash_ + "/" + bed_key] = text;
 }
 
 std::optional<std::string> MemoryCheckpointStore::load_result(const std::string& result_key) {

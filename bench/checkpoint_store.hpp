@@ -33,6 +33,18 @@ class CheckpointStore {
     virtual std::optional<std::string> load_bed(const std::string& bed_key) = 0;
     virtual void save_bed(const std::string& bed_key, const std::string& text) = 0;
 
+    /// A bed still settling (serialize_pour_progress()'s text), by the bed's key: a pour of
+    /// many spheres saves its progress as it goes and continues from it after an interruption;
+    /// saving the settled bed drops it. A store that keeps none returns nothing.
+    virtual std::optional<std::string> load_settling(const std::string& /*bed_key*/) {
+        return std::nullopt;
+    }
+    virtual void save_settling(const std::string& /*bed_key*/, const std::string& /*text*/) {}
+    /// How messages name a bed's settling progress (its file, for a file store).
+    [[nodiscard]] virtual std::string settling_name(const std::string& bed_key) const {
+        return bed_key + " (settling)";
+    }
+
     /// A finished unit of work that is not a sweep (a characterisation run: one grid point on
     /// one filling), as its result text, by key.
     virtual std::optional<std::string> load_result(const std::string& result_key) = 0;
@@ -52,7 +64,8 @@ class CheckpointStore {
     }
 };
 
-/// Checkpoints in DIR/checkpoints/<sweep>.txt, beds in DIR/settled/<bed>_<hash>.csv, results
+/// Checkpoints in DIR/checkpoints/<sweep>.txt, beds in DIR/settled/<bed>_<hash>.csv (while
+/// settling, DIR/settled/<bed>_<hash>.settling.txt), results
 /// in DIR/results/<key>_<hash>.txt, files under DIR: the recording directory the CLI writes. Every
 /// file goes through a rename, so a kill never leaves half of one; a file that cannot be written
 /// throws sb::FileWriteError naming it, and the files written before stay as they were.
@@ -71,6 +84,9 @@ class FileCheckpointStore : public CheckpointStore {
     void save_checkpoint(const std::string& sweep_key, const std::string& text) override;
     std::optional<std::string> load_bed(const std::string& bed_key) override;
     void save_bed(const std::string& bed_key, const std::string& text) override;
+    std::optional<std::string> load_settling(const std::string& bed_key) override;
+    void save_settling(const std::string& bed_key, const std::string& text) override;
+    [[nodiscard]] std::string settling_name(const std::string& bed_key) const override;
     std::optional<std::string> load_result(const std::string& result_key) override;
     void save_result(const std::string& result_key, const std::string& text) override;
     void save_file(const std::string& relative_path, const std::string& text) override;
@@ -92,6 +108,8 @@ class MemoryCheckpointStore : public CheckpointStore {
     void save_checkpoint(const std::string& sweep_key, const std::string& text) override;
     std::optional<std::string> load_bed(const std::string& bed_key) override;
     void save_bed(const std::string& bed_key, const std::string& text) override;
+    std::optional<std::string> load_settling(const std::string& bed_key) override;
+    void save_settling(const std::string& bed_key, const std::string& text) override;
     std::optional<std::string> load_result(const std::string& result_key) override;
     void save_result(const std::string& result_key, const std::string& text) override;
     void save_file(const std::string& relative_path, const std::string& text) override;
@@ -103,6 +121,7 @@ class MemoryCheckpointStore : public CheckpointStore {
     std::string hash_;
     std::map<std::string, std::string> checkpoints_;
     std::map<std::string, std::string> beds_;
+    std::map<std::string, std::string> settling_;
     std::map<std::string, std::string> results_;
     std::map<std::string, std::string> files_;
 };

@@ -2,6 +2,7 @@
 #include "bench/sweep_checkpoint.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 
@@ -21,6 +22,9 @@ constexpr std::string_view kChecksumKey = "checksum fnv1a64 ";
 constexpr long long kMaxVectorSize = 100000;
 constexpr long long kMaxCount = 100000000;
 constexpr long long kMaxPoints = 1000000;
+/// The first line of a pour's progress (settled_bed.hpp); sealed as a sweep checkpoint is.
+constexpr const char* kPourMagic = "shakerbench-pour-progress 1";
+constexpr std::string_view kPourMagicPrefix = "shakerbench-pour-progress ";
 /// The first line of a finished sweep sent from one process to another (no checksum: the
 /// transport carries it whole).
 constexpr const char* kResultMagic = "shakerbench-sweep-result 1";
@@ -457,18 +461,19 @@ namespace {
 
 /// The checksum first: a damaged file is reported as such, not as whatever its damage makes
 /// the first unreadable line look like.
-void check_sealed(const std::string& text, const std::string& file) {
-    if (text.rfind(kMagicPrefix, 0) != 0) {
+void check_sealed(const std::string& text, const std::string& file, std::string_view magic = kMagic,
+                  std::string_view magic_prefix = kMagicPrefix) {
+    if (text.rfind(magic_prefix, 0) != 0) {
         throw CheckpointError(
             file, 1,
-            "not a checkpoint: it does not start with '" + std::string(kMagicPrefix) + "'");
+            "not a checkpoint: it does not start with '" + std::string(magic_prefix) + "'");
     }
     const std::string first = text.substr(0, text.find('\n'));
-    if (first != kMagic) {
+    if (first != magic) {
         throw CheckpointError(file, 1,
-                              "checkpoint format '" + first.substr(kMagicPrefix.size()) +
+                              "checkpoint format '" + first.substr(magic_prefix.size()) +
                                   "', this shakerbench reads format '" +
-                                  std::string(kMagic).substr(kMagicPrefix.size()) + "'");
+                                  std::string(magic.substr(magic_prefix.size())) + "'");
     }
     const std::string_view content = checkpoint_content(text);
     if (content.size() == text.size()) {
@@ -647,6 +652,57 @@ SweepResult parse_sweep_result(const std::string& text, const std::string& sourc
     }
     r.line("end");
     return s;
+}
+
+std::string serialize_pour_progress(const dem::PourProgress& p) {
+    Writer w;
+    w.key(kPourMagic).end();
+    w.key("seed").integer(static_cast<long long>(p.seed)).end();
+    w.key("settle")
+        .integer(p.batch)
+        .integer(p.final_settle ? 1 : 0)
+        .integer(p.settle_steps)
+        .integer(p.quiet_checks)
+        .end();
+    w.key("generator").text(p.generator_state).end();
+    write_dem_state(w, p.solver);
+    w.key("end").end();
+    return seal_checkpoint(w.str());
+}
+
+dem::PourProgress parse_pour_progress(const std::string& text, const std::string& file_name) {
+    check_sealed(text, file_name, kPourMagic, kPourMagicPrefix);
+    Reader r(std::string(checkpoint_content(text)), file_name);
+    dem::PourProgress p;
+    r.line(kPourMagic);
+    {
+        auto words = r.line("seed");
+        std::string seed;
+        words >> seed;
+        char* end = nullptr;
+        p.seed = std::strtoull(seed.c_str(), &end, 10);
+        if (seed.empty() || *end != '\0') r.fail("'" + seed + "' is not a seed");
+        r.end(words);
+    }
+    {
+        auto words = r.line("settle");
+        const long long batch = r.integer(words), final_settle = r.integer(words);
+        p.settle_steps = r.integer(words);
+        const long long quiet = r.integer(words);
+        r.end(words);
+        if (batch < 0 || batch > kMaxCount || quiet < 0 || quiet > kMaxCount ||
+            p.settle_steps < 0 || (final_settle != 0 && final_settle != 1)) {
+            r.fail("implausible batch, step or check count");
+        }
+        p.batch = static_cast<int>(batch);
+        p.final_settle = final_settle == 1;
+        p.quiet_checks = static_cast<int>(quiet);
+    }
+    r.line("generator");
+    p.generator_state = r.text();
+    p.solver = read_dem_state(r);
+    r.line("end");
+    return p;
 }
 
 std::string checkpoint_config_hash(const std::string& text) {

@@ -9,6 +9,7 @@
 
 #include "bench/coupled_specimen.hpp"
 #include "bench/sweep_runner.hpp"
+#include "dem/setup.hpp"
 #include "identification/recording.hpp"
 
 namespace sb::bench {
@@ -51,6 +52,14 @@ class CheckpointError : public std::runtime_error {
 /// resumed sweep continues exactly where the interrupted one was. The last line is the
 /// checksum of everything before it (seal_checkpoint).
 std::string serialize_checkpoint(const SweepCheckpoint& checkpoint);
+
+/// A pour's progress (dem::PourProgress: the settling bed with its springs, the insertion
+/// generator, where the settle stands) as text, every number exact, sealed with a checksum as
+/// a sweep checkpoint is: a long pour continues from it bitwise (bench/settled_bed.hpp).
+std::string serialize_pour_progress(const dem::PourProgress& progress);
+
+/// Reads serialize_pour_progress()'s text; damage throws CheckpointError naming `file_name`.
+dem::PourProgress parse_pour_progress(const std::string& text, const std::string& file_name);
 
 /// Reads serialize_checkpoint()'s text. The checksum is checked first: a file cut short, a
 /// changed byte, a file of an older format throw CheckpointError naming the file (and the

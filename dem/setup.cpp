@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <limits>
 #include <optional>
@@ -265,26 +266,38 @@ double settling_step_s(const SolverOptions& options, const ParticleSet& initial,
     return std::min(so.dt_s, contact_time / kSettleStepsPerContact);
 }
 
-ParticleSet settle(const SolverOptions& options, const ParticleSet& initial,
-                   const SettleOptions& so) {
+namespace {
+
+void require_valid(const SettleOptions& so) {
     if (const Violations v = so.validate(); !v.empty()) {
         throw std::invalid_argument("settle: " + v.front().key + " = " + v.front().value + ": " +
                                     v.front().constraint);
     }
+}
+
+/// The options a settle runs with: free (no lock), no energy ledger, and the history-spring
+/// friction where SettleOptions::static_friction asks for it.
+SolverOptions settling_options(const SolverOptions& options, const SettleOptions& so) {
     SolverOptions o = options;
     o.lock = {};
     o.track_energy = false;
     if (so.static_friction && o.contact.tangential == TangentialLaw::directional_coulomb) {
         o.contact.tangential = TangentialLaw::coulomb_spring;
     }
-    Solver solver(o, initial);
-    const double dt = settling_step_s(o, initial, so);
+    return o;
+}
+
+/// Steps `solver` on from step `first` of a settle (with `quiet` quiet checks behind it) until
+/// the bed is at rest by the criterion of settle(); `at_check(k, quiet)`, when given, is
+/// called after every kSettleCheckInterval-th step k. The settled particles, enclosure frame.
+ParticleSet settle_to_rest(Solver& solver, double dt, const SettleOptions& so, std::int64_t first,
+                           int quiet, const std::function<void(std::int64_t, int)>& at_check) {
     const auto steps = static_cast<std::int64_t>(std::ceil(so.max_time_s / dt));
     const auto min_steps = static_cast<std::int64_t>(std::ceil(so.min_time_s / dt));
-    int quiet = 0;
-    for (std::int64_t k = 0; k < steps; ++k) {
+    for (std::int64_t k = first; k < steps; ++k) {
         solver.step(dt);
-        if (k >= min_steps && k % kSettleCheckInterval == 0) {
+        if (k % kSettleCheckInterval != 0) continue;
+        if (k >= min_steps) {
             // a bouncing bed passes through low kinetic energy at its turning points: demand
             // several consecutive quiet checks
             quiet = translational_kinetic_energy(solver.particles()) < so.kinetic_threshold_j
@@ -292,10 +305,21 @@ ParticleSet settle(const SolverOptions& options, const ParticleSet& initial,
                         : 0;
             if (quiet >= kSettleQuietChecks) return solver.local_snapshot();
         }
+        if (at_check) at_check(k, quiet);
     }
     throw std::runtime_error("settle: kinetic energy still above " +
                              format_value(so.kinetic_threshold_j) + " J after " +
                              format_value(so.max_time_s) + " s");
+}
+
+}  // namespace
+
+ParticleSet settle(const SolverOptions& options, const ParticleSet& initial,
+                   const SettleOptions& so) {
+    require_valid(so);
+    const SolverOptions o = settling_options(options, so);
+    Solver solver(o, initial);
+    return settle_to_rest(solver, settling_step_s(o, initial, so), so, 0, 0, {});
 }
 
 double translational_kinetic_energy(const ParticleState& p) {
@@ -323,8 +347,49 @@ Violations PourOptions::validate() const {
     return out;
 }
 
+namespace {
+
+/// Refuses a progress record that another pour (other spheres, other options) wrote, and sets
+/// the insertion generator to the record's.
+void take_generator(const PourProgress& p, std::uint64_t seed, const std::vector<double>& radii,
+                    const PourOptions& po, std::mt19937_64& rng) {
+    const std::size_t m = p.solver.positions_m.size();
+    const auto refuse = [](const std::string& why) {
+        throw std::invalid_argument("pour: the progress to resume does not fit this pour: " + why);
+    };
+    if (p.seed != seed) refuse("seed " + std::to_string(p.seed) + ", not " + std::to_string(seed));
+    if (p.batch < 0 || p.batch >= po.max_batches) refuse("batch " + std::to_string(p.batch));
+    if (p.settle_steps < 0 || p.quiet_checks < 0) refuse("a negative step or check count");
+    if (m == 0 || m > radii.size() || p.solver.radii_m.size() != m ||
+        !std::equal(p.solver.radii_m.begin(), p.solver.radii_m.end(), radii.begin())) {
+        refuse("its spheres are not the first of this pour's");
+    }
+    if (p.final_settle && (m != radii.size() || po.friction_scale == 1.0)) {
+        refuse("a final settle where this pour has none");
+    }
+    std::istringstream in(p.generator_state);
+    if (!(in >> rng)) refuse("its generator state does not read");
+}
+
+/// The options of batch settles: the pour's with `count` spheres and the batch friction.
+SolverOptions batch_options(const SolverOptions& options, const PourOptions& po,
+                            std::size_t count) {
+    SolverOptions o = options;
+    o.particles.count = static_cast<int>(count);
+    for (PairProperties* pair : {&o.contact.particle_particle, &o.contact.particle_wall,
+                                 o.contact.particle_rod ? &*o.contact.particle_rod : nullptr,
+                                 o.contact.particle_side ? &*o.contact.particle_side : nullptr}) {
+        if (pair == nullptr) continue;
+        pair->sliding_friction *= po.friction_scale;
+        pair->rolling_friction *= po.friction_scale;
+    }
+    return o;
+}
+
+}  // namespace
+
 ParticleSet pour(const SolverOptions& options, std::uint64_t seed, const SettleOptions& so,
-                 const PourOptions& po) {
+                 const PourOptions& po, const PourCheckpoints& checkpoints) {
     Violations v = options.validate();
     append_prefixed(v, "settle", so.validate());
     append_prefixed(v, "pour", po.validate());
@@ -339,54 +404,84 @@ ParticleSet pour(const SolverOptions& options, std::uint64_t seed, const SettleO
     const std::vector<double> radii = make_radii(options.particles, seed);
     const std::size_t n = radii.size();
     std::mt19937_64 rng(seed ^ 0xD1B54A32D192ED03ull);
+    const PourProgress* resume = checkpoints.resume;
+    if (resume != nullptr) take_generator(*resume, seed, radii, po, rng);
+
+    // One settle of the pour, from `bed` or, when it is the one in progress, from the record.
+    const auto settle_once = [&](const ParticleSet& bed, int batch, bool final_settle) {
+        const std::size_t now =
+            resume != nullptr ? resume->solver.positions_m.size() : bed.positions_m.size();
+        SettleOptions s = so;
+        if (now < n) s.kinetic_threshold_j *= po.batch_kinetic_factor;
+        const SolverOptions o =
+            settling_options(final_settle ? options : batch_options(options, po, now), s);
+        ParticleSet sizes;  // what the settling step depends on
+        sizes.radii_m = resume != nullptr ? resume->solver.radii_m : bed.radii_m;
+        std::optional<Solver> solver;
+        std::int64_t first = 0;
+        int quiet = 0;
+        if (resume != nullptr) {
+            solver.emplace(o, resume->solver, EnclosureState{});
+            first = resume->settle_steps + 1;
+            quiet = resume->quiet_checks;
+            resume = nullptr;
+        } else {
+            solver.emplace(o, bed);
+        }
+        const double dt = settling_step_s(o, sizes, s);
+        std::function<void(std::int64_t, int)> at_check;
+        if (checkpoints.due && checkpoints.save) {
+            at_check = [&](std::int64_t k, int quiet_now) {
+                if (!checkpoints.due()) return;
+                std::ostringstream generator;
+                generator << rng;
+                checkpoints.save(PourProgress{seed, batch, final_settle, k, quiet_now,
+                                              generator.str(), solver->state()});
+            };
+        }
+        return settle_to_rest(*solver, dt, s, first, quiet, at_check);
+    };
+
     ParticleSet bed;  // always the first bed.radii_m.size() spheres of `radii`, settled
-    for (int batch = 0; batch < po.max_batches; ++batch) {
-        // Insert into the free space left by the settled bed, in the (size-mixed) order of
-        // make_radii, until the first sphere finds no free place: each batch is a loose random
-        // layer on top of the bed.
-        const std::size_t before = bed.positions_m.size();
-        InsertionGrid grid(enc.lower(), enc.upper(), 2.0 * largest(radii), n);
-        for (std::size_t i = 0; i < before; ++i) grid.add(i, bed.positions_m[i]);
-        bed.positions_m.reserve(n);
-        std::vector<double> r = bed.radii_m;
-        r.reserve(n);
-        for (std::size_t i = before; i < n; ++i) {
-            r.push_back(radii[i]);
-            const auto x = find_free_place(enc, grid, radii[i], bed.positions_m, r, rng,
-                                           po.max_attempts_per_particle);
-            if (!x) {
-                r.pop_back();
-                break;
+    for (int batch = resume != nullptr ? resume->batch : 0; batch < po.max_batches; ++batch) {
+        const bool resuming_final = resume != nullptr && resume->final_settle;
+        if (resume == nullptr) {
+            // Insert into the free space left by the settled bed, in the (size-mixed) order of
+            // make_radii, until the first sphere finds no free place: each batch is a loose
+            // random layer on top of the bed.
+            const std::size_t before = bed.positions_m.size();
+            InsertionGrid grid(enc.lower(), enc.upper(), 2.0 * largest(radii), n);
+            for (std::size_t i = 0; i < before; ++i) grid.add(i, bed.positions_m[i]);
+            bed.positions_m.reserve(n);
+            std::vector<double> r = bed.radii_m;
+            r.reserve(n);
+            for (std::size_t i = before; i < n; ++i) {
+                r.push_back(radii[i]);
+                const auto x = find_free_place(enc, grid, radii[i], bed.positions_m, r, rng,
+                                               po.max_attempts_per_particle);
+                if (!x) {
+                    r.pop_back();
+                    break;
+                }
+                bed.positions_m.push_back(*x);
+                grid.add(i, *x);
             }
-            bed.positions_m.push_back(*x);
-            grid.add(i, *x);
+            const std::size_t now = bed.positions_m.size();
+            if (now == before) {
+                throw std::runtime_error(
+                    "pour: the settled bed of " + std::to_string(now) + " of " + std::to_string(n) +
+                    " spheres (solid fraction " + format_value(solid_fraction(bed, enc)) +
+                    " of the cavity) leaves no free place for the next one: the cavity is too "
+                    "small for this count");
+            }
+            bed.radii_m = r;
+            bed.velocities_m_s.resize(now, Eigen::Vector3d::Zero());
+            bed.angular_velocities_rad_s.resize(now, Eigen::Vector3d::Zero());
         }
-        const std::size_t now = bed.positions_m.size();
-        if (now == before) {
-            throw std::runtime_error(
-                "pour: the settled bed of " + std::to_string(now) + " of " + std::to_string(n) +
-                " spheres (solid fraction " + format_value(solid_fraction(bed, enc)) +
-                " of the cavity) leaves no free place for the next one: the cavity is too small "
-                "for this count");
-        }
-        bed.radii_m = r;
-        bed.velocities_m_s.resize(now, Eigen::Vector3d::Zero());
-        bed.angular_velocities_rad_s.resize(now, Eigen::Vector3d::Zero());
-        SolverOptions o = options;
-        o.particles.count = static_cast<int>(now);
-        for (PairProperties* pair :
-             {&o.contact.particle_particle, &o.contact.particle_wall,
-              o.contact.particle_rod ? &*o.contact.particle_rod : nullptr,
-              o.contact.particle_side ? &*o.contact.particle_side : nullptr}) {
-            if (pair == nullptr) continue;
-            pair->sliding_friction *= po.friction_scale;
-            pair->rolling_friction *= po.friction_scale;
-        }
-        SettleOptions batch_settle = so;
-        if (now < n) batch_settle.kinetic_threshold_j *= po.batch_kinetic_factor;
-        bed = settle(o, bed, batch_settle);
-        if (now == n && po.friction_scale != 1.0) bed = settle(options, bed, so);
-        if (now == n) return bed;
+        if (!resuming_final) bed = settle_once(bed, batch, false);
+        const bool full = resuming_final || bed.positions_m.size() == n;
+        if (full && po.friction_scale != 1.0) bed = settle_once(bed, batch, true);
+        if (full) return bed;
     }
     throw std::runtime_error("pour: " + std::to_string(bed.positions_m.size()) + " of " +
                              std::to_string(n) + " spheres placed after " +

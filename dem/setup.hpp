@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -87,6 +88,30 @@ struct PourOptions {
     Violations validate() const;
 };
 
+/// Where a pour stands inside one of its settles: enough to continue it bitwise. The batches
+/// before are the spheres of `solver`; the settle's options follow from the pour's and from
+/// `batch` and `final_settle`.
+struct PourProgress {
+    std::uint64_t seed = 0;         ///< the pour's seed
+    int batch = 0;                  ///< the batch being settled (0 for the first)
+    bool final_settle = false;      ///< the last settle, with the configured friction
+    std::int64_t settle_steps = 0;  ///< steps of this settle taken
+    int quiet_checks = 0;           ///< consecutive quiet checks of the rest criterion so far
+    /// The insertion generator after this batch's insertion (std::mt19937_64's text form).
+    std::string generator_state;
+    SolverState solver;  ///< the settling bed, enclosure at rest at the origin
+};
+
+/// Saving a pour's progress, and continuing a saved one. Every kSettleCheckInterval steps of
+/// settling `due()` is asked (cheap); when it says yes, `save()` gets the progress there.
+struct PourCheckpoints {
+    std::function<bool()> due;
+    std::function<void(const PourProgress&)> save;
+    /// Continue from this progress (taken by `save` from a pour with the same arguments)
+    /// instead of starting; throws std::invalid_argument for one that does not fit them.
+    const PourProgress* resume = nullptr;
+};
+
 /// Fills the cavity the way a bed is poured: a batch of spheres is inserted at random without
 /// overlap into the free space (uniform-grid overlap test), settled under gravity inside the
 /// real enclosure until at rest (settle()), and the next batch goes into the space left above
@@ -96,8 +121,13 @@ struct PourOptions {
 /// insertion (0.38) cannot. The spheres keep the order of make_radii(options.particles, seed)
 /// (size classes mixed); deterministic for a seed. Throws std::invalid_argument for bad
 /// options or zero gravity, std::runtime_error if the settled bed leaves no room for the rest.
+///
+/// A pour of tens of thousands of spheres settles for hours; `checkpoints` saves its progress
+/// as it goes and continues a saved one (PourCheckpoints): a pour resumed from any of its
+/// progress records gives bitwise the bed of the uninterrupted pour.
 ParticleSet pour(const SolverOptions& options, std::uint64_t seed = 1,
-                 const SettleOptions& settle_options = {}, const PourOptions& pour_options = {});
+                 const SettleOptions& settle_options = {}, const PourOptions& pour_options = {},
+                 const PourCheckpoints& checkpoints = {});
 
 /// Solid fraction of the cavity: sphere volume / cavity volume, obstacles not subtracted [-].
 double solid_fraction(const ParticleSet& particles, const Enclosure& enclosure);

@@ -77,6 +77,15 @@ class RemoteStore : public bench::CheckpointStore {
     void save_bed(const std::string& key, const std::string& text) override {
         link_.call(join({"save_bed", key, text}));
     }
+    std::optional<std::string> load_settling(const std::string& key) override {
+        return from_optional_text(link_.call(join({"load_settling", key})));
+    }
+    void save_settling(const std::string& key, const std::string& text) override {
+        link_.call(join({"save_settling", key, text}));
+    }
+    [[nodiscard]] std::string settling_name(const std::string& key) const override {
+        return link_.call(join({"settling_name", key}));
+    }
     std::optional<std::string> load_result(const std::string& key) override {
         return from_optional_text(link_.call(join({"load_result", key})));
     }
@@ -130,12 +139,17 @@ std::string serve_sweep_request(const std::string& request, const bench::Campaig
     if (op == "load_checkpoint") return optional_text(store.load_checkpoint(split(request, 2)[1]));
     if (op == "load_bed") return optional_text(store.load_bed(split(request, 2)[1]));
     if (op == "load_result") return optional_text(store.load_result(split(request, 2)[1]));
+    if (op == "load_settling") return optional_text(store.load_settling(split(request, 2)[1]));
+    if (op == "settling_name") return store.settling_name(split(request, 2)[1]);
     if (op == "save_checkpoint") {
         const auto f = split(request, 3);
         store.save_checkpoint(f[1], f[2]);
     } else if (op == "save_bed") {
         const auto f = split(request, 3);
         store.save_bed(f[1], f[2]);
+    } else if (op == "save_settling") {
+        const auto f = split(request, 3);
+        store.save_settling(f[1], f[2]);
     } else if (op == "save_result") {
         const auto f = split(request, 3);
         store.save_result(f[1], f[2]);

@@ -396,6 +396,63 @@ TEST(Pour, IsDeterministicForASeed) {
     EXPECT_NE(a.positions_m, c.positions_m);
 }
 
+TEST(Pour, ResumedFromAnyOfItsProgressRecordsGivesTheUninterruptedBed) {
+    SolverOptions o = small_box_for_pouring(56);
+    o.enclosure.length_y_m = 8e-3;
+    o.enclosure.height_m = 6e-3;  // two batches (above)
+    PourOptions po;
+    po.friction_scale = 0.5;  // and a final settle with the configured friction
+    const SettleOptions so = pour_settle_options();
+    const ParticleSet plain = pour(o, 5, so, po);
+
+    std::vector<PourProgress> records;
+    PourCheckpoints saving;
+    saving.due = [] { return true; };
+    saving.save = [&](const PourProgress& p) { records.push_back(p); };
+    const ParticleSet recorded = pour(o, 5, so, po, saving);
+    EXPECT_EQ(recorded.positions_m, plain.positions_m);  // saving changes nothing
+
+    // the first record, the last of the first batch, one of the second, one of the final settle
+    std::vector<const PourProgress*> picks;
+    for (std::size_t k = 0; k < records.size(); ++k) {
+        const PourProgress& p = records[k];
+        const bool last_of_first = p.batch == 0 && !p.final_settle &&
+                                   (k + 1 == records.size() || records[k + 1].batch != 0);
+        if (k == 0 || last_of_first) picks.push_back(&p);
+    }
+    const auto in = [&](int batch, bool final_settle) {
+        std::vector<const PourProgress*> of;
+        for (const auto& p : records) {
+            if (p.batch == batch && p.final_settle == final_settle) of.push_back(&p);
+        }
+        return of;
+    };
+    const auto second = in(1, false), last = in(1, true);
+    ASSERT_FALSE(second.empty());
+    ASSERT_FALSE(last.empty());
+    picks.push_back(second[second.size() / 2]);
+    picks.push_back(last[last.size() / 2]);
+    ASSERT_EQ(picks.size(), 4u);
+    for (const PourProgress* p : picks) {
+        SCOPED_TRACE("batch " + std::to_string(p->batch) + (p->final_settle ? " final" : "") +
+                     " step " + std::to_string(p->settle_steps));
+        PourCheckpoints resuming;
+        resuming.resume = p;
+        const ParticleSet resumed = pour(o, 5, so, po, resuming);
+        EXPECT_EQ(resumed.positions_m, plain.positions_m);
+        EXPECT_EQ(resumed.velocities_m_s, plain.velocities_m_s);
+        EXPECT_EQ(resumed.angular_velocities_rad_s, plain.angular_velocities_rad_s);
+    }
+    // a record of another pour is refused, not continued
+    PourCheckpoints other;
+    other.resume = picks[1];
+    EXPECT_THROW(pour(o, 6, so, po, other), std::invalid_argument);
+    PourProgress garbled = *picks[1];
+    garbled.generator_state = "not a generator";
+    other.resume = &garbled;
+    EXPECT_THROW(pour(o, 5, so, po, other), std::invalid_argument);
+}
+
 TEST(Pour, FillsAHorizontallyMountedCylinderAlongGravity) {
     SolverOptions o = small_box_for_pouring(60);
     o.enclosure.shape = EnclosureShape::cylinder;

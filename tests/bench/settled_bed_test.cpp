@@ -1,0 +1,110 @@
+// A poured bed's settling progress: saved as it settles, continued bitwise after a kill.
+#include "bench/settled_bed.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "bench/campaign_config.hpp"
+#include "bench/checkpoint_store.hpp"
+#include "bench/sweep_checkpoint.hpp"
+#include "core/units.hpp"
+
+namespace sb::bench {
+namespace {
+
+struct Killed {};
+
+/// A store whose process "dies" (throws Killed) right after its `kill_at`-th save of a
+/// settling progress (never for 0), counting the saves.
+class KilledAfterSaves : public MemoryCheckpointStore {
+  public:
+    explicit KilledAfterSaves(int kill_at) : kill_at_(kill_at) {}
+    void save_settling(const std::string& key, const std::string& text) override {
+        MemoryCheckpointStore::save_settling(key, text);
+        if (++saves == kill_at_) throw Killed{};
+    }
+    int saves = 0;
+
+  private:
+    int kill_at_;
+};
+
+CampaignConfig poured_config() {
+    return load_campaign_config_text(
+        std::string(builtin_config_text()) + "\n[dampers.pd.settle]\nfill = \"pour\"\n",
+        "poured.toml");
+}
+
+constexpr double kStiffness = 2e4;  // N/m
+const Eigen::Vector3d kGravity(0.0, 0.0, -kStandardGravity);
+
+TEST(SettledBed, APourKilledWhileSettlingResumesToTheBedOfAnUninterruptedOne) {
+    const auto config = poured_config();
+    const DamperSpec& damper = config.campaign.dampers.front();
+    const Eigen::Matrix3d upright = Eigen::Matrix3d::Identity();
+    const dem::ParticleSet plain =
+        settled_bed(damper, kStiffness, upright, kGravity, 7, nullptr, "bed");
+
+    KilledAfterSaves counting(0);  // a progress at every check: the most save points
+    counting.open("hash", false);
+    const dem::ParticleSet saved =
+        settled_bed(damper, kStiffness, upright, kGravity, 7, &counting, "bed", nullptr, 0.0);
+    EXPECT_EQ(saved.positions_m, plain.positions_m);  // saving changes nothing
+    EXPECT_FALSE(counting.load_settling("bed"));      // dropped once the bed is saved
+    ASSERT_GT(counting.saves, 3);
+
+    for (const int kill_at : {1, counting.saves / 2, counting.saves - 1}) {
+        SCOPED_TRACE("killed after save " + std::to_string(kill_at) + " of " +
+                     std::to_string(counting.saves));
+        KilledAfterSaves store(kill_at);
+        store.open("hash", false);
+        EXPECT_THROW(
+            settled_bed(damper, kStiffness, upright, kGravity, 7, &store, "bed", nullptr, 0.0),
+            Killed);
+        ASSERT_TRUE(store.load_settling("bed"));
+        ASSERT_FALSE(store.load_bed("bed"));
+        bool settled_here = false;
+        const dem::ParticleSet resumed = settled_bed(damper, kStiffness, upright, kGravity, 7,
+                                                     &store, "bed", &settled_here, 0.0);
+        EXPECT_TRUE(settled_here);
+        EXPECT_EQ(resumed.positions_m, plain.positions_m);
+        EXPECT_EQ(resumed.velocities_m_s, plain.velocities_m_s);
+        EXPECT_EQ(resumed.angular_velocities_rad_s, plain.angular_velocities_rad_s);
+        EXPECT_EQ(store.saves, counting.saves);  // the resumed pour saved only what was left
+        EXPECT_FALSE(store.load_settling("bed"));
+    }
+}
+
+TEST(SettledBed, ADamagedOrForeignSettlingProgressIsRefusedNamingIt) {
+    const auto config = poured_config();
+    const DamperSpec& damper = config.campaign.dampers.front();
+    const Eigen::Matrix3d upright = Eigen::Matrix3d::Identity();
+    KilledAfterSaves killed(2);
+    killed.open("hash", false);
+    EXPECT_THROW(
+        settled_bed(damper, kStiffness, upright, kGravity, 7, &killed, "bed", nullptr, 0.0),
+        Killed);
+    const std::string progress = *killed.load_settling("bed");
+
+    const auto refused = [&](const std::string& text, std::uint64_t seed, const char* why) {
+        MemoryCheckpointStore store;
+        store.open("hash", false);
+        store.save_settling("bed", text);
+        try {
+            (void)settled_bed(damper, kStiffness, upright, kGravity, seed, &store, "bed", nullptr,
+                              0.0);
+            ADD_FAILURE() << why << ": resumed";
+        } catch (const CheckpointError& e) {
+            EXPECT_EQ(e.file(), store.settling_name("bed")) << why;
+        }
+    };
+    refused(progress.substr(0, progress.size() / 2), 7, "cut short");
+    std::string changed = progress;
+    changed[changed.size() / 2] ^= 0x01;
+    refused(changed, 7, "a changed byte");
+    refused(progress, 8, "another seed's bed");
+}
+
+}  // namespace
+}  // namespace sb::bench
