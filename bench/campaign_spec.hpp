@@ -104,7 +104,7 @@ struct ContactSpec {
     double max_overlap_fraction = 0.01;
     /// DEM step / pair contact time [-]; absent: the largest of dem::kTimeStepLadder at
     /// which single impacts give the converged restitution (dem::automatic_time_step_fraction:
-    /// a tenth to a twentieth for e >= 0.9, a fortieth at 0.7, finer below;
+    /// a tenth for e >= 0.9 and Hertz 0.7, a twentieth for Hooke 0.7, finer below;
     /// docs/validation.md).
     std::optional<double> time_step_fraction;
     /// What an automatic stiffness is sized for: the largest level of the campaign (one

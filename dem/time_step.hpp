@@ -15,9 +15,14 @@ inline constexpr double kTimeStepLadder[] = {1.0 / 10.0, 1.0 / 14.0, 1.0 / 20.0,
 /// The step whose restitution stands for the converged one (a fourth of the finest tried).
 inline constexpr double kConvergedTimeStepFraction = 1.0 / 320.0;
 /// Largest relative deviation of the restitution from the converged one, over the start
-/// phases on average and at the worst phase.
+/// phases on average and at the worst phase. A bed's impacts start at every phase, so the
+/// mean is the systematic error it feels; the spread over the phases acts as a random
+/// scatter of each impact's restitution, bounded at 2 %: at the worst phase of t_c/10 paper
+/// 000's e = 0.9 deviates by 1.6 %, and forty fillings of its damper alone at 0.5 and 0.75 g
+/// and sixteen of its campaign at 0.5-3 g move by no more than chance between t_c/10 and
+/// t_c/20 (docs/validation.md, the production time step).
 inline constexpr double kRestitutionMeanTolerance = 0.005;
-inline constexpr double kRestitutionWorstTolerance = 0.01;
+inline constexpr double kRestitutionWorstTolerance = 0.02;
 
 /// What automatic_time_step_fraction() found.
 struct TimeStepFraction {

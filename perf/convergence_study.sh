@@ -48,7 +48,7 @@ fi
 overlap_for() { awk -v o="$overlap" -v s="$1" 'BEGIN { printf "%.6g", o / sqrt(s) }'; }
 
 # name | --set assignments (space separated). The baseline's time step is the config's, by
-# default the automatic one (docs/dem.md: t_c/20 for a Hooke contact of restitution 0.9).
+# default the automatic one (docs/dem.md: t_c/10 for a Hooke contact of restitution 0.9).
 variants=(
     "baseline|"
     "dt_tc/10|dampers.$damper.contact.time_step_fraction=0.1"

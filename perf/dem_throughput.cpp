@@ -76,7 +76,8 @@ Case case_a() {
 /// The damper of case a as paper 000's campaign runs it (the H-0 sweep at 2 g near the first
 /// mode, docs/performance.md): gravity across the cylinder's axis, the paper's directional
 /// Coulomb law with rolling resistance, the contact sized for the campaign's 5 g (4.24e5 N/m,
-/// the automatic step t_c/20) and the enclosure rocking with the beam's slope, so that every
+/// t_c/20, the automatic step until t_c/10 replaced it: kept so that instruction counts and
+/// state hashes compare) and the enclosure rocking with the beam's slope, so that every
 /// position goes through the rotated frame as in a coupled run. Not a LAMMPS problem.
 Case case_c() {
     Case c = case_a();
