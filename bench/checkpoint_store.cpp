@@ -133,8 +133,12 @@ void FileCheckpointStore::save_bed(const std::string& bed_key, const std::string
     fs::remove(settling_name(bed_key), ignored);
 }
 
+std::string FileCheckpointStore::settling_file(const std::string& bed_key) const {
+    return "settled/" + bed_key + "_" + hash_ + ".settling.txt";
+}
+
 std::string FileCheckpointStore::settling_name(const std::string& bed_key) const {
-    return (directory_ / "settled" / (bed_key + "_" + hash_ + ".settling.txt")).string();
+    return (directory_ / settling_file(bed_key)).string();
 }
 
 std::optional<std::string> FileCheckpointStore::load_settling(const std::string& bed_key) {
@@ -144,7 +148,7 @@ std::optional<std::string> FileCheckpointStore::load_settling(const std::string&
 }
 
 void FileCheckpointStore::save_settling(const std::string& bed_key, const std::string& text) {
-    save_file("settled/" + bed_key + "_" + hash_ + ".settling.txt", text);
+    save_file(settling_file(bed_key), text);
 }
 
 std::string FileCheckpointStore::result_name(const std::string& result_key) const {

@@ -95,6 +95,8 @@ class FileCheckpointStore : public CheckpointStore {
   private:
     void check_writable() const;
     void remove_partial_files() const;
+    /// A bed's settling progress, relative to the directory.
+    [[nodiscard]] std::string settling_file(const std::string& bed_key) const;
 
     std::filesystem::path directory_;
     std::string hash_;

@@ -386,6 +386,42 @@ SolverOptions batch_options(const SolverOptions& options, const PourOptions& po,
     return o;
 }
 
+/// Inserts the next batch into the free space left by the settled `bed`, in the (size-mixed)
+/// order of make_radii, until the first sphere finds no free place: each batch is a loose
+/// random layer on top of the bed. Throws std::runtime_error when not one sphere fits.
+void insert_batch(const Enclosure& enc, const std::vector<double>& radii, const PourOptions& po,
+                  std::mt19937_64& rng, ParticleSet& bed) {
+    const std::size_t n = radii.size();
+    const std::size_t before = bed.positions_m.size();
+    InsertionGrid grid(enc.lower(), enc.upper(), 2.0 * largest(radii), n);
+    for (std::size_t i = 0; i < before; ++i) grid.add(i, bed.positions_m[i]);
+    bed.positions_m.reserve(n);
+    std::vector<double> r = bed.radii_m;
+    r.reserve(n);
+    for (std::size_t i = before; i < n; ++i) {
+        r.push_back(radii[i]);
+        const auto x = find_free_place(enc, grid, radii[i], bed.positions_m, r, rng,
+                                       po.max_attempts_per_particle);
+        if (!x) {
+            r.pop_back();
+            break;
+        }
+        bed.positions_m.push_back(*x);
+        grid.add(i, *x);
+    }
+    const std::size_t now = bed.positions_m.size();
+    if (now == before) {
+        throw std::runtime_error(
+            "pour: the settled bed of " + std::to_string(now) + " of " + std::to_string(n) +
+            " spheres (solid fraction " + format_value(solid_fraction(bed, enc)) +
+            " of the cavity) leaves no free place for the next one: the cavity is too small "
+            "for this count");
+    }
+    bed.radii_m = r;
+    bed.velocities_m_s.resize(now, Eigen::Vector3d::Zero());
+    bed.angular_velocities_rad_s.resize(now, Eigen::Vector3d::Zero());
+}
+
 }  // namespace
 
 ParticleSet pour(const SolverOptions& options, std::uint64_t seed, const SettleOptions& so,
@@ -445,39 +481,7 @@ ParticleSet pour(const SolverOptions& options, std::uint64_t seed, const SettleO
     ParticleSet bed;  // always the first bed.radii_m.size() spheres of `radii`, settled
     for (int batch = resume != nullptr ? resume->batch : 0; batch < po.max_batches; ++batch) {
         const bool resuming_final = resume != nullptr && resume->final_settle;
-        if (resume == nullptr) {
-            // Insert into the free space left by the settled bed, in the (size-mixed) order of
-            // make_radii, until the first sphere finds no free place: each batch is a loose
-            // random layer on top of the bed.
-            const std::size_t before = bed.positions_m.size();
-            InsertionGrid grid(enc.lower(), enc.upper(), 2.0 * largest(radii), n);
-            for (std::size_t i = 0; i < before; ++i) grid.add(i, bed.positions_m[i]);
-            bed.positions_m.reserve(n);
-            std::vector<double> r = bed.radii_m;
-            r.reserve(n);
-            for (std::size_t i = before; i < n; ++i) {
-                r.push_back(radii[i]);
-                const auto x = find_free_place(enc, grid, radii[i], bed.positions_m, r, rng,
-                                               po.max_attempts_per_particle);
-                if (!x) {
-                    r.pop_back();
-                    break;
-                }
-                bed.positions_m.push_back(*x);
-                grid.add(i, *x);
-            }
-            const std::size_t now = bed.positions_m.size();
-            if (now == before) {
-                throw std::runtime_error(
-                    "pour: the settled bed of " + std::to_string(now) + " of " + std::to_string(n) +
-                    " spheres (solid fraction " + format_value(solid_fraction(bed, enc)) +
-                    " of the cavity) leaves no free place for the next one: the cavity is too "
-                    "small for this count");
-            }
-            bed.radii_m = r;
-            bed.velocities_m_s.resize(now, Eigen::Vector3d::Zero());
-            bed.angular_velocities_rad_s.resize(now, Eigen::Vector3d::Zero());
-        }
+        if (resume == nullptr) insert_batch(enc, radii, po, rng, bed);
         if (!resuming_final) bed = settle_once(bed, batch, false);
         const bool full = resuming_final || bed.positions_m.size() == n;
         if (full && po.friction_scale != 1.0) bed = settle_once(bed, batch, true);
