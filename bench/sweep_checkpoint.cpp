@@ -11,8 +11,8 @@
 namespace sb::bench {
 namespace {
 
-/// The first line. Format 4 added the checksum line.
-constexpr const char* kMagic = "shakerbench-sweep-checkpoint 4";
+/// The first line. Format 4 added the checksum line, 5 the numerics line.
+constexpr const char* kMagic = "shakerbench-sweep-checkpoint 5";
 constexpr std::string_view kMagicPrefix = "shakerbench-sweep-checkpoint ";
 /// The last line: the 64-bit FNV-1a of every byte before it. A file cut short, or with a byte
 /// changed on disk, fails it; the rename that writes a checkpoint never leaves half a file, but
@@ -392,6 +392,7 @@ std::string serialize_checkpoint(const SweepCheckpoint& c) {
     Writer w;
     w.key(kMagic).end();
     w.key("config_hash").text(c.config_hash).end();
+    w.key("numerics").text(c.numerics).end();
     w.key("points_done").integer(c.points_done).end();
     w.key("next_amplitude").num(c.next_amplitude).end();
     write_vector(w, "q", c.state.q);
@@ -502,6 +503,8 @@ SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& fil
     r.line(kMagic);
     r.line("config_hash");
     c.config_hash = r.text();
+    r.line("numerics");
+    c.numerics = r.text();
     {
         auto words = r.line("points_done");
         const long long done = r.integer(words);

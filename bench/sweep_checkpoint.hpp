@@ -18,6 +18,10 @@ struct SweepCheckpoint {
     /// Hash of the resolved config that wrote it (bench/resolved_config.hpp): a checkpoint
     /// is only ever resumed by the same config.
     std::string config_hash;
+    /// The numbers the bench chose beyond the config (each DEM damper's automatic contact
+    /// stiffness and time step, the coupled step's limit) as `key=value` words: a checkpoint
+    /// resumes only where this build chooses the same (bench/sweep_runner.cpp).
+    std::string numerics;
     int points_done = 0;          ///< finished frequencies of the sweep
     double next_amplitude = 0.0;  ///< the warm-start amplitude the last point ended with
     SpecimenState state;          ///< the specimen after the last finished point

@@ -111,6 +111,25 @@ double response_ratio(const identification::PointRow& row) {
 /// the sweep was edited or written by a faulty build: refused, never resumed from.
 /// `refine_budget`: how many frequencies the grid refinement may add after the planned grid
 /// (their rows are checked as the refinement adds them again, in run_sweep).
+/// `v` with the 17 significant digits that read back as the same double, and legible.
+std::string round_trip_text(double v) {
+    std::ostringstream out;
+    out << std::setprecision(17) << v;
+    return out.str();
+}
+
+/// A checkpoint continues only under the numbers it was written with: the same config gives
+/// other ones when an automatic choice's rule changed between the two builds.
+void check_numerics(const SweepCheckpoint& c, const std::string& name,
+                    const std::string& numerics) {
+    if (c.numerics == numerics) return;
+    throw CheckpointError(name, 0,
+                          "was written with the numerics '" + c.numerics +
+                              "'; for the same config this shakerbench chooses '" + numerics +
+                              "' (an automatic choice's rule changed): --restart discards the "
+                              "checkpoints and starts over");
+}
+
 void check_fits(const SweepCheckpoint& c, const std::string& name, const SweepTask& task,
                 int refine_budget, CoupledSpecimen& specimen) {
     const auto refuse = [&](const std::string& why) {
@@ -219,6 +238,9 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
     std::vector<std::string> damper_names;
     const double lowest_hz = *std::min_element(frequencies.begin(), frequencies.end());
     double dt_max = 1.0 / (256.0 * lowest_hz);
+    // The numbers this build chooses beyond the config (the checkpoint keeps them: a change
+    // of an automatic rule must not continue a sweep begun under the old one).
+    std::string numerics;
     const bool energy = campaign.output.energy;
     for (const DamperSpec& damper : campaign.dampers) {
         const DamperMounting mounting = damper_mounting(prepared.arrangement, damper);
@@ -237,6 +259,8 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
                 g_to_m_s2(damper.contact.sized_for_g(task.level_g, task.stiffness_level_g)),
             prepared.first_mode_hz);
         dt_max = std::min(dt_max, chosen.time_step_s);
+        numerics += damper.name + ".normal_stiffness=" + round_trip_text(chosen.stiffness) + " " +
+                    damper.name + ".time_step_s=" + round_trip_text(chosen.time_step_s) + " ";
         out.settings.push_back(damper.name + ": " + chosen.log);
         const dem::ParticleSet bed =
             settled_bed(damper, chosen.stiffness, mounting.rotation, gravity, task.seed, &store,
@@ -276,6 +300,7 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
     const auto force_per_drive = [&](double f) {
         return shaker.on() ? blocked_force_per_volt(shaker, f) : std::complex<double>(1.0);
     };
+    numerics += "step_limit_s=" + round_trip_text(dt_max);
     SpecimenPlant plant(specimen, series_samples, campaign.scale_response_on_update, energy);
     // A fixed drive: the sweep's level is its amplitude (no controller, no target).
     const bool fixed = campaign.drive.fixed();
@@ -298,6 +323,7 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
     SweepCheckpoint checkpoint;
     const auto save = [&] {
         checkpoint.config_hash = config_hash;
+        checkpoint.numerics = numerics;
         const std::string text = serialize_checkpoint(checkpoint);
         store.save_checkpoint(task.key, text);
         // Every point starts from the text, as a resumed one does.
@@ -306,6 +332,7 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
     if (campaign.transient.on()) {
         if (const auto text = store.load_checkpoint(task.key)) {
             checkpoint = parse_checkpoint(*text, checkpoint_name);
+            check_numerics(checkpoint, checkpoint_name, numerics);
             if (!checkpoint.rows.empty()) {
                 throw CheckpointError(checkpoint_name, 0,
                                       "holds stepped-sine points, not a run from rest");
@@ -336,6 +363,7 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
     }
     if (const auto text = store.load_checkpoint(task.key)) {
         checkpoint = parse_checkpoint(*text, checkpoint_name);
+        check_numerics(checkpoint, checkpoint_name, numerics);
         check_fits(checkpoint, checkpoint_name, task,
                    task.refine ? campaign.frequencies.refine_points : 0, specimen);
         out.resumed_points = checkpoint.points_done;

@@ -11,6 +11,7 @@
 
 #include "bench/campaign.hpp"
 #include "bench/resolved_config.hpp"
+#include "bench/sweep_checkpoint.hpp"
 #include "campaign_fixtures.hpp"
 #include "config/errors.hpp"
 #include "core/text_file.hpp"
@@ -169,11 +170,15 @@ class InterruptedStore : public MemoryCheckpointStore {
     void save_checkpoint(const std::string& key, const std::string& text) override {
         if (++saves_ == fail_at_) throw std::runtime_error("interrupted");
         MemoryCheckpointStore::save_checkpoint(key, text);
+        last_key_ = key;
     }
     void stop_failing() { fail_at_ = -1; }
+    /// The sweep whose checkpoint landed last.
+    [[nodiscard]] const std::string& last_key() const { return last_key_; }
 
   private:
     int fail_at_;
+    std::string last_key_;
     int saves_ = 0;
 };
 
@@ -194,6 +199,46 @@ TEST(CampaignFunction, AnInterruptedRunResumedEqualsAnUninterruptedOneWithStatic
     const CampaignResult resumed = run_campaign(config, context);
     EXPECT_EQ(resumed.summary.resumed_points, 2);
     expect_same_points(resumed.recording.points, whole.recording.points);
+}
+
+TEST(CampaignFunction, ACheckpointWrittenUnderAnotherAutomaticStepIsRefusedNotContinued) {
+    // The same config, a build whose automatic step rule differs (as when the rule changed
+    // from t_c/20 to t_c/10): the sweep must not go on at the new step from a state reached
+    // at the old one.
+    CampaignConfig config = small_dem_campaign();
+    CampaignContext context;
+    context.threads = 1;
+    context.selection = Selection::of(config, {}, {2.0});
+    InterruptedStore store(3);  // the first point's start, one point, then the kill
+    context.store = &store;
+    EXPECT_THROW(run_campaign(config, context), std::runtime_error);
+    store.stop_failing();
+
+    const std::string key = store.last_key();
+    SweepCheckpoint written = parse_checkpoint(*store.load_checkpoint(key), key);
+    const std::string step_key = "pd.time_step_s=";
+    const auto at = written.numerics.find(step_key);
+    ASSERT_NE(at, std::string::npos) << written.numerics;
+    const auto value_end = written.numerics.find(' ', at);
+    const std::string value =
+        written.numerics.substr(at + step_key.size(), value_end - at - step_key.size());
+    const double step_s = std::stod(value);
+    EXPECT_GT(step_s, 0.0);
+    EXPECT_NE(written.numerics.find("step_limit_s="), std::string::npos);
+    SweepCheckpoint other = written;
+    other.numerics.replace(at + step_key.size(), value.size(), std::to_string(step_s / 2.0));
+    store.save_checkpoint(key, serialize_checkpoint(other));
+    try {
+        run_campaign(config, context);
+        ADD_FAILURE() << "a checkpoint written at another step was resumed";
+    } catch (const CheckpointError& e) {
+        EXPECT_NE(e.message().find("numerics"), std::string::npos) << e.what();
+        EXPECT_NE(e.message().find("--restart"), std::string::npos) << e.what();
+        EXPECT_NE(e.message().find(written.numerics), std::string::npos) << e.what();
+    }
+    // Its own numbers resume it.
+    store.save_checkpoint(key, serialize_checkpoint(written));
+    EXPECT_EQ(run_campaign(config, context).summary.resumed_points, 1);
 }
 
 TEST(CampaignFunction, ADamperAtTheShakerPointAddsItsLoadToTheShakersForce) {

@@ -15,6 +15,7 @@ namespace {
 SweepCheckpoint sample_checkpoint() {
     SweepCheckpoint c;
     c.config_hash = "0123456789abcdef";
+    c.numerics = "pd.normal_stiffness=424300 pd.time_step_s=3.5784e-06 step_limit_s=3.5784e-06";
     c.points_done = 2;
     c.next_amplitude = 0.1;  // not exact in binary: the hexadecimal text must keep every bit
     c.state.q = Eigen::VectorXd::LinSpaced(3, -1.0 / 3.0, 2.0);
@@ -63,6 +64,7 @@ TEST(SweepCheckpoint, ReadsBackExactlyWhatWasWritten) {
     const std::string text = serialize_checkpoint(c);
     const SweepCheckpoint back = parse_checkpoint(text, kFile);
     EXPECT_EQ(back.config_hash, c.config_hash);
+    EXPECT_EQ(back.numerics, c.numerics);
     EXPECT_EQ(back.points_done, 2);
     EXPECT_EQ(back.next_amplitude, 0.1);
     EXPECT_EQ(back.state.q, c.state.q);
