@@ -20,11 +20,16 @@
 // and the skin the run ended with (skin_m).
 // --count (case b): N spheres, the cavity's footprint scaled by N / 5,000 (default 5,000).
 // --bed (case b): settled bed cache; read if present, else settled and written.
+// --settled-csv FILE (case b): instead, a bed the bench poured (OUT/settled/*.csv of `run` or
+// `characterize`, in paper 002's cavity): its spheres, count and size, the cavity unscaled;
+// --order cell sorts them by cell of the neighbour grid first (default: as poured).
 // --write-lammps-data: writes the initial state as a LAMMPS `atom_style sphere` data file
 // and exits; --lammps-vars 1 prints the matching `-var` arguments of validation/lammps/
 // in.damper (a) or in.box5000 (b) and exits. Otherwise prints one line `key=value ...` with
 // particle-steps/s of the timed steps and a hash of the final state (state_hash: equal
 // hashes mean bitwise equal runs).
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -36,6 +41,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "config/write.hpp"
 #include "dem/setup.hpp"
@@ -163,6 +169,61 @@ void write_bed(const std::filesystem::path& path, const ParticleSet& p) {
     }
 }
 
+[[noreturn]] void usage(const std::string& why);
+
+/// A bed the bench wrote (bench/settled_bed.hpp): a header line, then per sphere
+/// x, y, z, radius, velocity and angular velocity, comma-separated, in the enclosure frame.
+ParticleSet read_settled_csv(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    std::string line;
+    if (!std::getline(in, line) || line.rfind("x_m,", 0) != 0) {
+        usage(path.string() + ": not a settled bed (its first line is not the x_m,... header)");
+    }
+    ParticleSet p;
+    for (int number = 2; std::getline(in, line); ++number) {
+        std::istringstream cells(line);
+        double v[10];
+        for (double& value : v) {
+            std::string cell;
+            char* end = nullptr;
+            if (!std::getline(cells, cell, ',') ||
+                (value = std::strtod(cell.c_str(), &end), end == cell.c_str() || *end != '\0')) {
+                usage(path.string() + ":" + std::to_string(number) + ": expected 10 numbers");
+            }
+        }
+        p.positions_m.emplace_back(v[0], v[1], v[2]);
+        p.radii_m.push_back(v[3]);
+        p.velocities_m_s.emplace_back(v[4], v[5], v[6]);
+        p.angular_velocities_rad_s.emplace_back(v[7], v[8], v[9]);
+    }
+    if (p.radii_m.empty()) usage(path.string() + ": no spheres");
+    return p;
+}
+
+/// The spheres ordered by cell (z, then y, then x) of side `cell_m` from the cavity's corner:
+/// neighbours near each other in memory, as a sort at list rebuilds would keep them.
+ParticleSet ordered_by_cell(const ParticleSet& p, const Eigen::Vector3d& corner_m, double cell_m) {
+    std::vector<std::size_t> order(p.radii_m.size());
+    std::vector<std::array<long, 3>> cell(order.size());
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        order[i] = i;
+        for (int a = 0; a < 3; ++a) {
+            cell[i][static_cast<std::size_t>(2 - a)] =
+                std::lround(std::floor((p.positions_m[i][a] - corner_m[a]) / cell_m));
+        }
+    }
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return cell[a] < cell[b]; });
+    ParticleSet sorted;
+    for (const std::size_t i : order) {
+        sorted.positions_m.push_back(p.positions_m[i]);
+        sorted.radii_m.push_back(p.radii_m[i]);
+        sorted.velocities_m_s.push_back(p.velocities_m_s[i]);
+        sorted.angular_velocities_rad_s.push_back(p.angular_velocities_rad_s[i]);
+    }
+    return sorted;
+}
+
 ParticleSet read_bed(const std::filesystem::path& path) {
     ParticleSet p;
     std::ifstream in(path);
@@ -279,7 +340,8 @@ std::string lammps_vars(const Case& c) {
     std::cerr << "dem_throughput: " << why
               << "\nusage: dem_throughput a|b|c [--threads N] [--warmup STEPS] [--steps STEPS]"
                  " [--ledger 0|1] [--bed FILE] [--count N (case b)] [--write-lammps-data FILE]"
-                 " [--lammps-vars 1] [--skin FRACTION] [--adapt-skin 0|1] [--level-g PEAK]\n";
+                 " [--lammps-vars 1] [--skin FRACTION] [--adapt-skin 0|1] [--level-g PEAK]"
+                 " [--settled-csv FILE [--order poured|cell] (case b)]\n";
     std::exit(2);
 }
 
@@ -321,7 +383,7 @@ int main(int argc, char** argv) {
     Case c = name == "a" ? case_a() : name == "c" ? case_c() : case_b(count_b);
     int threads = 1;
     bool ledger = false;
-    std::string bed, lammps_data;
+    std::string bed, lammps_data, settled_csv, order = "poured";
     bool print_lammps_vars = false;
     for (int k = 2; k < argc; ++k) {
         const std::string key = argv[k];
@@ -339,6 +401,11 @@ int main(int argc, char** argv) {
             // read above
         } else if (key == "--bed") {
             bed = value;
+        } else if (key == "--settled-csv") {
+            settled_csv = value;
+        } else if (key == "--order") {
+            order = value;
+            if (order != "poured" && order != "cell") usage("--order: expected poured or cell");
         } else if (key == "--level-g") {
             c.level_m_s2 = parse_positive(key, value, 1000.0) * sb::kStandardGravity;
         } else if (key == "--adapt-skin") {
@@ -360,9 +427,24 @@ int main(int argc, char** argv) {
         return 0;
     }
 
+    if (!settled_csv.empty() && (name != "b" || !bed.empty() || count_b != 5000)) {
+        usage("--settled-csv applies to case b, without --bed and --count");
+    }
     ParticleSet p;
     if (name != "b") {
         p = fill_random(c.options, 2021);
+    } else if (!settled_csv.empty()) {
+        p = read_settled_csv(settled_csv);
+        c.options.particles.count = static_cast<int>(p.radii_m.size());
+        c.options.particles.diameter_m =
+            2.0 * *std::max_element(p.radii_m.begin(), p.radii_m.end());
+        if (order == "cell") {
+            const auto& e = c.options.enclosure;
+            const double cell_m =
+                c.options.particles.diameter_m * (1.0 + c.options.neighbor_skin_fraction);
+            p = ordered_by_cell(p, Eigen::Vector3d(-0.5 * e.length_x_m, -0.5 * e.length_y_m, 0.0),
+                                cell_m);
+        }
     } else if (!bed.empty() && std::filesystem::exists(bed)) {
         p = read_bed(bed);
     } else {
