@@ -218,10 +218,10 @@ std::shared_ptr<const config::Table> contact_table() {
         .unit("-")
         .bound(Bound::closed(1e-3, 0.5))
         .automatic(
-            "the largest of 1/10, 1/14, 1/20, 1/28, 1/40, 1/56 and 1/80 of the pair contact "
-            "time at which single impacts (two spheres head on, one onto a wall, from eight "
-            "phases of the step) give the restitution of a 1/320 step within 0.5 % on average "
-            "and 2 % at worst; 1/80 if none does");
+            "the largest of 1/10, 1/14, 1/20, 1/28, 1/40, 1/56 and 1/80 of the contact time "
+            "of two of the smallest spheres at which single impacts (two of them head on, one "
+            "onto a wall, from eight phases of the step) give the restitution of a 1/320 step "
+            "within 0.5 % on average and 2 % at worst; 1/80 if none does");
     t.choice(
          "stiffness_for", [](ContactSpec & c) -> auto& { return c.stiffness_for; },
          ContactSpec::kStiffnessForNames, "what an automatic stiffness is sized for")

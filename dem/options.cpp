@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace sb::dem {
@@ -63,6 +64,12 @@ double ParticleOptions::largest_diameter_m() const {
     for (const auto& s : size_distribution) d = std::max(d, s.diameter_m);
     // u in make_radii reaches sqrt(3): the bound of a uniform law of unit variance.
     return d * (1.0 + std::sqrt(3.0) * diameter_scatter);
+}
+
+double ParticleOptions::smallest_diameter_m() const {
+    double d = size_distribution.empty() ? diameter_m : std::numeric_limits<double>::infinity();
+    for (const auto& s : size_distribution) d = std::min(d, s.diameter_m);
+    return d * (1.0 - std::sqrt(3.0) * diameter_scatter);
 }
 
 namespace {

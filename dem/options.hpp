@@ -56,6 +56,9 @@ struct ParticleOptions {
     /// The largest diameter a sphere can have, scatter included: the largest nominal one
     /// times 1 + sqrt(3) s [m].
     double largest_diameter_m() const;
+    /// The smallest diameter a sphere can have: the smallest nominal one times 1 - sqrt(3) s
+    /// [m]. Its contacts are the shortest, so it sets the time step.
+    double smallest_diameter_m() const;
 };
 
 enum class NormalLaw { hooke, hertz };

@@ -616,6 +616,8 @@ Violations AutoStiffnessInput::validate() const {
         require_positive(out, "frequency_hz", frequency_hz, "frequency [Hz]");
         require_non_negative(out, "gap_m", gap_m, "free flight across the cavity [m]");
     }
+    require_non_negative(out, "smallest_diameter_m", smallest_diameter_m,
+                         "smallest diameter of the bed [m] (0: one size)");
     require_in_range(out, "time_step_fraction", time_step_fraction, 1e-4, 0.5,
                      "dt / contact time [-]");
     if (!(restitution > 0.0 && restitution <= 1.0)) {
@@ -652,6 +654,12 @@ AutoStiffness auto_stiffness(const AutoStiffnessInput& in) {
     const double r = 0.5 * in.particle_diameter_m;
     const double m = in.density_kg_m3 * 4.0 / 3.0 * kPi * r * r * r;
     out.effective_mass_kg = in.wall_contact ? m : 0.5 * m;
+    // The shortest contacts are the smallest spheres' (t_c ~ m*^{1/2} for Hooke, ~ m*^{2/5}
+    // for Hertz): the time step must resolve theirs.
+    const double r_small = in.smallest_diameter_m > 0.0
+                               ? 0.5 * std::min(in.smallest_diameter_m, in.particle_diameter_m)
+                               : r;
+    const double m_small = in.density_kg_m3 * 4.0 / 3.0 * kPi * r_small * r_small * r_small;
     if (in.impact_speed_m_s > 0.0) {
         out.impact_speed_m_s = in.impact_speed_m_s;
     } else {
@@ -673,8 +681,8 @@ AutoStiffness auto_stiffness(const AutoStiffnessInput& in) {
     } else {
         out.stiffness = 1.25 * me * vi * vi / std::pow(d, 2.5);  // 1/2 m v^2 = 2/5 k delta^2.5
     }
-    out.wall_contact_time_s = contact_time(m);
-    out.pair_contact_time_s = contact_time(0.5 * m);
+    out.wall_contact_time_s = contact_time(m_small);
+    out.pair_contact_time_s = contact_time(0.5 * m_small);
     out.contact_time_s = std::min(out.wall_contact_time_s, out.pair_contact_time_s);
     out.time_step_s = in.time_step_fraction * out.contact_time_s;
     return out;
@@ -700,6 +708,7 @@ AutoStiffnessInput excitation_input(const ParticleOptions& particles,
     AutoStiffnessInput in;
     in.law = law;
     in.particle_diameter_m = particles.largest_diameter_m();
+    in.smallest_diameter_m = particles.smallest_diameter_m();
     in.density_kg_m3 = particles.material.density_kg_m3;
     in.level_m_s2 = peak_acceleration_m_s2;
     in.frequency_hz = frequency_hz;
@@ -714,9 +723,9 @@ ExcitationContact choose_contact(const ParticleOptions& particles,
                                  double restitution, std::optional<double> given_stiffness,
                                  double max_overlap_fraction, double time_step_fraction,
                                  double peak_acceleration_m_s2, double frequency_hz) {
-    // The largest spheres overlap most at a given speed (auto_stiffness) and have the longest
-    // contact; the time step follows from the contact of two of them.
-    const double d = particles.largest_diameter_m();
+    // The largest spheres overlap most at a given speed (auto_stiffness); the smallest have
+    // the shortest contact, and the time step follows from the contact of two of them.
+    const double d = particles.smallest_diameter_m();
     const double mass = particles.material.density_kg_m3 * kPi * d * d * d / 6.0;
     AutoStiffnessInput in = excitation_input(particles, enclosure, law, time_step_fraction,
                                              peak_acceleration_m_s2, frequency_hz);
@@ -754,7 +763,8 @@ ExcitationContact materials_contact(const ParticleOptions& particles,
                                     const EnclosureOptions& enclosure,
                                     const ContactOptions& contact, double time_step_fraction,
                                     double peak_acceleration_m_s2, double frequency_hz) {
-    const double d = particles.largest_diameter_m();
+    // The smallest spheres have the shortest contacts (t_c ~ m*^{2/5} R*^{-1/5}).
+    const double d = particles.smallest_diameter_m();
     const double mass = particles.material.density_kg_m3 * kPi * d * d * d / 6.0;
     // auto_stiffness() estimates the impact speed (and checks the inputs); its stiffness,
     // sized from an overlap, is not used.

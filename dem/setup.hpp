@@ -159,6 +159,9 @@ struct AutoStiffnessInput {
     double gravity_m_s2 = kStandardGravity;
     double restitution = 0.9;                ///< for the damped contact time (Hooke)
     double time_step_fraction = 1.0 / 40.0;  ///< dt = fraction * shortest contact time
+    /// The smallest spheres of a bed of several sizes: the contact times, and so the time
+    /// step, are theirs (the shortest); 0 = particle_diameter_m (one size).
+    double smallest_diameter_m = 0.0;
     /// Size k for particle-wall impacts (m* = m, the larger overlap at a given speed), else for
     /// particle-particle impacts (m* = m/2). The time step always follows from the shorter
     /// particle-particle contact time.
@@ -171,12 +174,14 @@ struct AutoStiffness {
     double impact_speed_m_s = 0.0;   ///< used speed (given or a/(2 pi f) + sqrt(2 a_max gap))
     double effective_mass_kg = 0.0;  ///< m* the stiffness was sized for [kg]
     double max_overlap_m = 0.0;
-    double stiffness = 0.0;            ///< Hooke [N/m] or Hertz [N/m^1.5]
-    double wall_contact_time_s = 0.0;  ///< particle-wall, m* = m, at the impact speed [s]
-    double pair_contact_time_s = 0.0;  ///< particle-particle, m* = m/2 (1/sqrt 2 of the wall's
-                                       ///< for Hooke, 2^{-2/5} for Hertz) [s]
-    double contact_time_s = 0.0;       ///< the shortest of the two (= pair) [s]
-    double time_step_s = 0.0;          ///< time_step_fraction * contact_time_s [s]
+    double stiffness = 0.0;  ///< Hooke [N/m] or Hertz [N/m^1.5]
+    /// particle-wall, m* = m of the smallest spheres, at the impact speed [s]
+    double wall_contact_time_s = 0.0;
+    /// particle-particle, two of the smallest spheres, m* = m/2 (1/sqrt 2 of the wall's for
+    /// Hooke, 2^{-2/5} for Hertz) [s]
+    double pair_contact_time_s = 0.0;
+    double contact_time_s = 0.0;  ///< the shortest of the two (= pair) [s]
+    double time_step_s = 0.0;     ///< time_step_fraction * contact_time_s [s]
 };
 
 /// Stiffness from the allowed overlap at the impact speed (1/2 m* v^2 = elastic energy at
@@ -200,7 +205,7 @@ double hertz_constant(const Material& a, double r_a_m, const Material& b, double
 struct ExcitationContact {
     double stiffness = 0.0;            ///< Hooke [N/m] or Hertz [N/m^1.5]
     double time_step_s = 0.0;          ///< DEM time step [s]
-    double pair_contact_time_s = 0.0;  ///< of two of the largest spheres [s]
+    double pair_contact_time_s = 0.0;  ///< of two of the smallest spheres [s]
     double impact_speed_m_s = 0.0;     ///< the largest expected impact speed (0: no
                                        ///< excitation given, with a given Hooke stiffness) [m/s]
     std::string log;
@@ -210,8 +215,9 @@ struct ExcitationContact {
 /// The given stiffness, or auto_stiffness() sized for the largest spheres (largest_diameter_m(),
 /// the diameter scatter included) at the largest impact speed of the excitation (peak acceleration
 /// a, frequency f, free flight across the enclosure height); the time step is time_step_fraction
-/// times the particle-particle contact time of the largest spheres (m* = m/2): Hooke damped with
-/// `restitution`, Hertz at the impact speed auto_stiffness() estimates. Throws
+/// times the particle-particle contact time of the smallest spheres (smallest_diameter_m(),
+/// m* = m/2), the shortest contact of the bed: Hooke damped with `restitution`, Hertz at the
+/// impact speed auto_stiffness() estimates. Throws
 /// std::invalid_argument (auto_stiffness()'s checks) for inputs it cannot size.
 ExcitationContact choose_contact(const ParticleOptions& particles,
                                  const EnclosureOptions& enclosure, NormalLaw law,
@@ -222,7 +228,7 @@ ExcitationContact choose_contact(const ParticleOptions& particles,
 /// The Hertz contact of the materials (no stiffness to choose: each pair's constant 4/3 E*
 /// sqrt(R*) from the Young's moduli and Poisson ratios, ExcitationContact::stiffness 0 as
 /// ContactOptions::normal_stiffness reads it) and its time step: time_step_fraction times the
-/// shorter contact of two of the largest spheres and of one against a flat wall of the
+/// shorter contact of two of the smallest spheres and of one against a flat wall of the
 /// stiffer of `contact`'s wall and side materials, at the largest impact speed
 /// choose_contact() estimates (the rest of `contact` is not read). Throws
 /// std::invalid_argument for inputs it cannot size.

@@ -9,16 +9,10 @@
 #include "dem/solver.hpp"
 
 namespace sb::dem {
-namespace {
 
-constexpr int kPhases = 8;
-
-/// Restitution of one head-on normal impact at closing speed v with step dt, the contact
-/// starting `phase` (0..1) of a step's travel before the first step's end: two of the largest
-/// spheres (pair) or one onto the floor of a box (wall), no gravity.
-double impact_restitution(const SolverOptions& base, bool wall, double v, double dt, double phase) {
+double head_on_restitution(const SolverOptions& base, double d, bool wall, double v, double dt,
+                           double phase) {
     SolverOptions o = base;
-    const double d = base.particles.largest_diameter_m();
     const double r = 0.5 * d;
     o.particles.count = wall ? 1 : 2;
     o.particles.diameter_m = d;
@@ -61,6 +55,16 @@ double impact_restitution(const SolverOptions& base, bool wall, double v, double
     }
     const auto& u = s.particles().v;
     return wall ? u[0].z() / v : (u[1].z() - u[0].z()) / v;
+}
+
+namespace {
+
+constexpr int kPhases = 8;
+
+/// Two of the smallest spheres (pair) or one (wall): their contacts are the shortest, and the
+/// contact time the step is a fraction of is theirs (choose_contact).
+double impact_restitution(const SolverOptions& base, bool wall, double v, double dt, double phase) {
+    return head_on_restitution(base, base.particles.smallest_diameter_m(), wall, v, dt, phase);
 }
 
 struct PhaseStats {

@@ -38,9 +38,16 @@ struct TimeStepFraction {
     std::string describe() const;
 };
 
+/// Restitution of one head-on normal impact of spheres of diameter `d` at closing speed `v`
+/// with step `dt`, the contact starting `phase` (0..1) of a step's travel before the first
+/// step's end: two spheres (`wall` false) or one onto the floor of a box, no gravity, with the
+/// law, coefficients and stiffness of `options`.
+double head_on_restitution(const SolverOptions& options, double d, bool wall, double v, double dt,
+                           double phase);
+
 /// The largest fraction of kTimeStepLadder at which the semi-implicit Euler step reproduces
 /// the restitution of single normal impacts at `impact_speed_m_s` within the tolerances
-/// above: two of the largest spheres head on, and one onto a flat wall, with the law,
+/// above: two of the smallest spheres head on, and one onto a flat wall, with the law,
 /// coefficients and stiffness of `options` (its enclosure, gravity and lock are not used).
 /// Each impact is run from eight start phases of the step, (k + 1/2)/8 of a step's travel
 /// from contact: where a contact starts and ends within a step is an O(dt) error whose sign

@@ -648,11 +648,13 @@ struct ExcitationCase {
         particles.size_distribution = {{2e-3, 0.5}, {4e-3, 0.5}};
         enclosure.height_m = 25e-3;
     }
-    /// auto_stiffness() sized for the largest spheres at this excitation.
+    /// auto_stiffness() sized for the largest spheres at this excitation, its contact times
+    /// the smallest spheres'.
     AutoStiffnessInput input(NormalLaw law, double restitution) const {
         AutoStiffnessInput in;
         in.law = law;
         in.particle_diameter_m = 4e-3;
+        in.smallest_diameter_m = 2e-3;
         in.density_kg_m3 = particles.material.density_kg_m3;
         in.max_overlap_fraction = overlap;
         in.level_m_s2 = peak_m_s2;
@@ -668,6 +670,9 @@ struct ExcitationCase {
     }
     double largest_mass_kg() const {
         return particles.material.density_kg_m3 * kPi * std::pow(4e-3, 3) / 6.0;
+    }
+    double smallest_mass_kg() const {
+        return particles.material.density_kg_m3 * kPi * std::pow(2e-3, 3) / 6.0;
     }
     /// a / (2 pi f) + sqrt(2 (a + g) gap): the largest impact speed of the excitation.
     double impact_speed_m_s() const {
@@ -698,14 +703,23 @@ TEST(ChooseContact, AutomaticStiffnessIsSizedForTheLargestSpheresAtTheExcitation
         const double stored = law == NormalLaw::hooke ? 0.5 * chosen.stiffness * d * d
                                                       : 0.4 * chosen.stiffness * std::pow(d, 2.5);
         EXPECT_NEAR(stored, energy, 1e-9 * energy);
+        // the step: a fraction of the contact of two of the smallest spheres (2 mm, m* = m/2),
+        // the shortest of the bed (a third of the largest pair's for Hooke)
+        const double m_pair = 0.5 * c.smallest_mass_kg();
+        const double t_c = law == NormalLaw::hooke
+                               ? hooke_contact_time(m_pair, chosen.stiffness, 0.8)
+                               : hertz_contact_time(m_pair, chosen.stiffness, v);
+        EXPECT_NEAR(chosen.pair_contact_time_s, t_c, 1e-12 * t_c);
+        EXPECT_NEAR(chosen.time_step_s, c.fraction * t_c, 1e-12 * t_c);
     }
 }
 
-TEST(ChooseContact, AScatterSizesTheStiffnessAndTimeStepForTheLargestSphereItCanDraw) {
+TEST(ChooseContact, AScatterSizesTheStiffnessForTheLargestSphereItCanDrawAndTheStepForTheSmallest) {
     ExcitationCase c;
     c.particles.diameter_scatter = 0.1;
     AutoStiffnessInput in = c.input(NormalLaw::hooke, 0.8);
     in.particle_diameter_m = (1.0 + std::sqrt(3.0) * 0.1) * 4e-3;
+    in.smallest_diameter_m = (1.0 - std::sqrt(3.0) * 0.1) * 2e-3;
     const AutoStiffness expected = auto_stiffness(in);
     const ExcitationContact chosen = c.choose(NormalLaw::hooke, 0.8, std::nullopt);
     EXPECT_EQ(chosen.stiffness, expected.stiffness);
@@ -745,7 +759,8 @@ TEST(MaterialsContact, TheStepIsTheFractionOfTheShorterHertzContactOfTheMaterial
                                                        c.fraction, c.peak_m_s2, c.frequency_hz);
     EXPECT_EQ(chosen.stiffness, 0.0);  // the solver takes each pair's from the materials
     EXPECT_NEAR(chosen.impact_speed_m_s, c.impact_speed_m_s(), 1e-12 * c.impact_speed_m_s());
-    const double m = c.largest_mass_kg(), r = 2e-3, v = c.impact_speed_m_s();
+    // the smallest spheres (2 mm) have the shortest contacts
+    const double m = c.smallest_mass_kg(), r = 1e-3, v = c.impact_speed_m_s();
     const double e_star = 210e9 / (2.0 * 0.91);
     const double pair = johnson_contact_time(0.5 * m, 0.5 * r, e_star, v);
     EXPECT_NEAR(chosen.pair_contact_time_s, pair, 2e-3 * pair);
@@ -795,7 +810,7 @@ TEST(SolverOptions, RodsMustClearTheLargestScatteredSphere) {
 
 TEST(ChooseContact, GivenHookeStiffnessStepsAFractionOfThePairContactTime) {
     const ExcitationCase c;
-    const double k = 3e4, m_pair = 0.5 * c.largest_mass_kg();
+    const double k = 3e4, m_pair = 0.5 * c.smallest_mass_kg();  // the shortest contact
     const ExcitationContact damped = c.choose(NormalLaw::hooke, 0.8, k);
     EXPECT_EQ(damped.stiffness, k);
     const double t_c = hooke_contact_time(m_pair, k, 0.8);
@@ -812,7 +827,7 @@ TEST(ChooseContact, GivenHookeStiffnessStepsAFractionOfThePairContactTime) {
 
 TEST(ChooseContact, GivenHertzStiffnessStepsAFractionOfThePairContactTimeAtTheImpactSpeed) {
     const ExcitationCase c;
-    const double k = 8e9, m_pair = 0.5 * c.largest_mass_kg(), v = c.impact_speed_m_s();
+    const double k = 8e9, m_pair = 0.5 * c.smallest_mass_kg(), v = c.impact_speed_m_s();
     const ExcitationContact chosen = c.choose(NormalLaw::hertz, 0.8, k);
     EXPECT_EQ(chosen.stiffness, k);
     // 2.94328 (5 m* / (4 k))^{2/5} v^{-1/5} (Johnson, Contact Mechanics, 11.2; the constant to
