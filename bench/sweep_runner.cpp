@@ -107,10 +107,6 @@ double response_ratio(const identification::PointRow& row) {
     return std::abs(row.values[1].amplitude / row.values[0].amplitude);
 }
 
-/// A checkpoint of this sweep's config (its hash and checksum said so) that still does not fit
-/// the sweep was edited or written by a faulty build: refused, never resumed from.
-/// `refine_budget`: how many frequencies the grid refinement may add after the planned grid
-/// (their rows are checked as the refinement adds them again, in run_sweep).
 /// `v` with the 17 significant digits that read back as the same double, and legible.
 std::string round_trip_text(double v) {
     std::ostringstream out;
@@ -130,6 +126,10 @@ void check_numerics(const SweepCheckpoint& c, const std::string& name,
                               "checkpoints and starts over");
 }
 
+/// A checkpoint of this sweep's config (its hash and checksum said so) that still does not fit
+/// the sweep was edited or written by a faulty build: refused, never resumed from.
+/// `refine_budget`: how many frequencies the grid refinement may add after the planned grid
+/// (their rows are checked as the refinement adds them again, in run_sweep).
 void check_fits(const SweepCheckpoint& c, const std::string& name, const SweepTask& task,
                 int refine_budget, CoupledSpecimen& specimen) {
     const auto refuse = [&](const std::string& why) {
