@@ -15,9 +15,10 @@ namespace {
 
 /// A pour saving its progress in `store` under `key` every `interval_s` of wall time, and
 /// continuing the progress stored there.
-dem::ParticleSet pour_with_checkpoints(const dem::SolverOptions& local, const DamperSpec& damper,
-                                       std::uint64_t seed, CheckpointStore& store,
-                                       const std::string& key, double interval_s) {
+dem::ParticleSet pour_with_checkpoints(const dem::SolverOptions& local,
+                                       const dem::SettleOptions& settle, std::uint64_t seed,
+                                       CheckpointStore& store, const std::string& key,
+                                       double interval_s) {
     using Clock = std::chrono::steady_clock;
     std::optional<dem::PourProgress> progress;
     if (const auto text = store.load_settling(key)) {
@@ -34,7 +35,7 @@ dem::ParticleSet pour_with_checkpoints(const dem::SolverOptions& local, const Da
     };
     checkpoints.resume = progress ? &*progress : nullptr;
     try {
-        return dem::pour(local, seed, damper.settle, {}, checkpoints);
+        return dem::pour(local, seed, settle, {}, checkpoints);
     } catch (const std::invalid_argument& e) {
         if (!progress) throw;
         throw CheckpointError(store.settling_name(key), 0, e.what());
@@ -51,7 +52,8 @@ dem::ParticleSet settle_now(const DamperSpec& damper, double stiffness,
     local.lock = dem::LockOptions{};  // the bed settles free; a lock then holds it as it lies
     if (damper.fill == DamperSpec::Fill::pour) {
         if (store == nullptr) return dem::pour(local, seed, damper.settle);
-        return pour_with_checkpoints(local, damper, seed, *store, key, checkpoint_interval_s);
+        return pour_with_checkpoints(local, damper.settle, seed, *store, key,
+                                     checkpoint_interval_s);
     }
     dem::ParticleSet filled;
     try {
