@@ -34,6 +34,7 @@ struct CharacterizeArgs {
     bench::SteadyStateOptions steady;
     int threads = 0;
     bool quiet = false;
+    double progress_s = 60.0;
     bool energy = false;
     bool restart = false;
     std::vector<std::string> overrides;
@@ -98,6 +99,7 @@ int run(const CharacterizeArgs& args) {
     if (!args.quiet && root) {
         options.progress = [](const std::string& line) { std::cerr << line << '\n' << std::flush; };
     }
+    options.progress_interval_s = args.progress_s;
     const int threads = args.threads > 0
                             ? args.threads
                             : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
@@ -241,6 +243,10 @@ void register_characterize_command(CLI::App& app, int& exit_code) {
                   "DIR/characterization_energy.csv, the spectra of the bed's kinetic energy and "
                   "dissipated power in DIR/energy_spectrum.csv (as output.energy = true)");
     cmd->add_flag("-q,--quiet", args->quiet, "no progress lines");
+    cmd->add_option("--progress-seconds", args->progress_s,
+                    "seconds between the lines of a run still going: its periods so far and "
+                    "their pace (default 60; 0: after every period)")
+        ->check(CLI::NonNegativeNumber);
     cmd->add_flag("--restart", args->restart,
                   "discard the runs and settled beds stored in the output directory for this "
                   "config and start over (by default a run already stored there is taken from "

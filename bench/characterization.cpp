@@ -142,7 +142,8 @@ std::string SteadyStateOptions::describe() const {
 }
 
 ApparentMassPoint measure_apparent_mass(const EnclosureSetup& setup, const HarmonicDrive& drive,
-                                        const SteadyStateOptions& steady) {
+                                        const SteadyStateOptions& steady,
+                                        const std::function<void(int)>& after_period) {
     if (const auto v = steady.validate(); !v.empty()) {
         throw std::invalid_argument("steady-state criterion: " + v.front().key + " " +
                                     v.front().constraint);
@@ -246,6 +247,7 @@ ApparentMassPoint measure_apparent_mass(const EnclosureSetup& setup, const Harmo
         periods.push_back(period);
         const int count = p + 1;
         window_end = count;
+        if (after_period) after_period(count);
         if (count < steady.transient_periods + 2 * w_periods) continue;
         if (steady.energy_tolerance > 0.0) {
             const auto first = static_cast<std::size_t>(count - 2 * w_periods);

@@ -120,11 +120,13 @@ struct ApparentMassPoint {
     std::optional<BedEnergy> energy;
 };
 
-/// Runs the damper of `setup` under `drive` until steady (or the budget) and measures it.
-/// Throws dem::SimulationError when a DEM guard fires, std::invalid_argument for a drive or
-/// criterion it cannot run.
+/// Runs the damper of `setup` under `drive` until steady (or the budget) and measures it;
+/// `after_period`, when given, is called after every period with the number done (the
+/// progress of a long run). Throws dem::SimulationError when a DEM guard fires,
+/// std::invalid_argument for a drive or criterion it cannot run.
 ApparentMassPoint measure_apparent_mass(const EnclosureSetup& setup, const HarmonicDrive& drive,
-                                        const SteadyStateOptions& steady);
+                                        const SteadyStateOptions& steady,
+                                        const std::function<void(int)>& after_period = {});
 
 /// Rotation per unit translation along `direction` of `point` in the first mode the
 /// excitation drives (the structure with the particles as rigid mass) [rad/m]: a cantilever's
@@ -148,6 +150,9 @@ struct CharacterizeOptions {
     int threads = 0;  ///< runs in parallel; 0: OpenMP's default
     /// Receives progress lines; empty: none.
     std::function<void(const std::string&)> progress;
+    /// Wall time between the lines of a run still going (a bed of ten thousand spheres takes
+    /// tens of minutes per run) [s]; 0: after every period.
+    double progress_interval_s = 60.0;
     std::string command_line;  ///< for the file's header
     /// Runs the grid in other processes (MPI ranks; distributed/rounds.hpp): given each run's
     /// number as text, returns each one's result as text (CharacterizationWorker::run's

@@ -264,10 +264,11 @@ dem::ParticleSet settle(const CharacterizationGrid& grid, std::size_t b, Checkpo
     return particles;
 }
 
-/// Run `r` of the grid on its settled bed.
+/// Run `r` of the grid on its settled bed; `after_period` as measure_apparent_mass's.
 ApparentMassPoint measure(const CampaignConfig& config, const CharacterizeOptions& options,
                           const CharacterizationGrid& grid, std::size_t r,
-                          const dem::ParticleSet& particles) {
+                          const dem::ParticleSet& particles,
+                          const std::function<void(int)>& after_period = {}) {
     const Eigen::Vector3d direction = config.structure.excitation.direction.normalized();
     const auto& run = grid.runs[r];
     const auto& bed = grid.beds[run.bed];
@@ -288,7 +289,7 @@ ApparentMassPoint measure(const CampaignConfig& config, const CharacterizeOption
         grid.rotations[bed.arrangement * grid.dampers.size() + grid.damper_index(bed.damper)];
     drive.acceleration_m_s2 = std::sqrt(2.0) * g_to_m_s2(bed.level_g);
     drive.frequency_hz = run.frequency_hz;
-    return measure_apparent_mass(setup, drive, options.steady);
+    return measure_apparent_mass(setup, drive, options.steady, after_period);
 }
 
 /// A list as its length and its values.
@@ -369,17 +370,23 @@ ApparentMassPoint parse_point(const std::string& text) {
     return m;
 }
 
+/// Where run `r` is: arrangement, damper, level, frequency and filling.
+std::string run_name(const CharacterizationGrid& grid, std::size_t r) {
+    const auto& run = grid.runs[r];
+    const auto& bed = grid.beds[run.bed];
+    const PreparedArrangement& prepared = grid.plan.arrangements[bed.arrangement];
+    return prepared.arrangement.name + " " + bed.damper->name + " " +
+           significant_text(bed.level_g, 6) + " g " + significant_text(run.frequency_hz, 6) +
+           " Hz seed " + std::to_string(bed.seed);
+}
+
 void report(const CharacterizeOptions& options, const CharacterizationGrid& grid, std::size_t r,
             int done) {
     if (!options.progress) return;
     const auto& run = grid.runs[r];
-    const auto& bed = grid.beds[run.bed];
-    const PreparedArrangement& prepared = grid.plan.arrangements[bed.arrangement];
     std::ostringstream line;
     const auto m = run.result.apparent_mass_kg;
-    line << '[' << done << '/' << grid.runs.size() << "] " << prepared.arrangement.name << ' '
-         << bed.damper->name << ' ' << significant_text(bed.level_g, 6) << " g "
-         << significant_text(run.frequency_hz, 6) << " Hz seed " << bed.seed
+    line << '[' << done << '/' << grid.runs.size() << "] " << run_name(grid, r)
          << ": M = " << significant_text(m.real(), 6) << (m.imag() < 0 ? " - " : " + ")
          << significant_text(std::abs(m.imag()), 6)
          << "i kg, P = " << significant_text(run.result.power_w, 6) << " W, " << run.result.periods
@@ -427,7 +434,26 @@ int run_here(const CampaignConfig& config, const CharacterizeOptions& options,
         const std::size_t r = to_run[k];
         try {
             auto& run = grid.runs[r];
-            run.result = measure(config, options, grid, r, beds[grid.beds[run.bed].same_as]);
+            // A line every progress_interval_s while the run goes: a large bed's run takes
+            // tens of minutes, and only its end would say anything otherwise.
+            using Clock = std::chrono::steady_clock;
+            const auto start = Clock::now();
+            auto last = start;
+            const auto going = [&](int periods) {
+                const auto now = Clock::now();
+                if (!options.progress ||
+                    std::chrono::duration<double>(now - last).count() < options.progress_interval_s)
+                    return;
+                last = now;
+                const double per_period =
+                    std::chrono::duration<double>(now - start).count() / periods;
+                std::lock_guard<std::mutex> lock(progress_mutex);
+                options.progress("  " + run_name(grid, r) + ": " + std::to_string(periods) +
+                                 " periods of at most " +
+                                 std::to_string(options.steady.max_periods) + ", " +
+                                 significant_text(per_period, 3) + " s per period");
+            };
+            run.result = measure(config, options, grid, r, beds[grid.beds[run.bed].same_as], going);
             if (options.store != nullptr) {
                 options.store->save_result(run.key, sealed(point_text(run.result)));
             }

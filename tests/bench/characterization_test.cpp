@@ -209,6 +209,44 @@ TEST(Characterization, TheTableIsTheSameOnOneAndTwoThreads) {
     EXPECT_EQ(one.table.rows.front().seeds, 2);
 }
 
+TEST(Characterization, ARunStillGoingSaysHowManyPeriodsItHasRunAndTheirPace) {
+    // A bed of ten thousand spheres takes tens of minutes per run: the lines come every
+    // progress_interval_s (here after every period), then the run's own line when it ends.
+    const std::string text = test::paper000_h0_with({
+        {"count = 120", "count = 30"},
+        {"max_overlap_fraction", "max_overlap_fraction = 0.05"},
+        {"levels_g", "levels_g = [2.0]"},
+    });
+    const auto config = load_campaign_config_text(text, "progress.toml");
+    CharacterizeOptions options = sb::test::short_characterization(1, 3, 8);
+    options.seeds = 1;
+    options.progress_interval_s = 0.0;
+    std::vector<std::string> lines;
+    options.progress = [&](const std::string& line) { lines.push_back(line); };
+    const auto result = characterize(config, options);
+    ASSERT_EQ(result.runs_by_filling.size(), 1u);
+    const int periods = result.runs_by_filling.front().result.periods;
+    ASSERT_GE(periods, 7);  // one transient period and two windows of three at least
+    std::vector<std::string> going;
+    for (const auto& line : lines) {
+        if (line.find("periods of at most 8") != std::string::npos) going.push_back(line);
+    }
+    ASSERT_EQ(going.size(), static_cast<std::size_t>(periods)) << ::testing::PrintToString(lines);
+    EXPECT_EQ(going.front().rfind("  H-0 pd 2 g ", 0), 0u) << going.front();
+    EXPECT_NE(going.front().find(": 1 periods of at most 8, "), std::string::npos) << going.front();
+    EXPECT_NE(going.back().find(": " + std::to_string(periods) + " periods of at most 8, "),
+              std::string::npos)
+        << going.back();
+    EXPECT_NE(going.back().find(" s per period"), std::string::npos) << going.back();
+    // the run's own line comes last
+    EXPECT_EQ(lines.back().rfind("[1/1] H-0 pd 2 g ", 0), 0u) << lines.back();
+    // with the default interval a run of a few seconds says nothing until it ends
+    options.progress_interval_s = 60.0;
+    lines.clear();
+    (void)characterize(config, options);
+    for (const auto& line : lines) EXPECT_EQ(line.find("periods of at most"), std::string::npos);
+}
+
 /// The 30-sphere H-0 bed at 1 and 2 g: a characterisation cheap enough to run four times.
 CampaignConfig small_h0_bed(const std::string& name) {
     const std::string text = test::paper000_h0_with({
