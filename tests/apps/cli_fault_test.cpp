@@ -222,34 +222,58 @@ TEST(CliFaults, TwentyHardKillsAtRandomMomentsThenARunToTheEndGiveTheUninterrupt
     const std::vector<double> at = run_timeline(config, whole, dir / "whole.log");
     ASSERT_GE(at.size(), 3u);
 
-    // Each run is killed after a random delay of up to one and a half times what the
-    // uninterrupted run took from its start to its first checkpoint plus the stretch to the
-    // next one from where this run resumes: kills land at start-up, while the bed settles,
-    // inside a point, while a checkpoint or an output file is written, and about one in three
-    // lets a point finish, so the campaign moves on between kills.
+    // Runs killed at random moments of three kinds, in turn: one after a random part (up to
+    // one and a half times) of the uninterrupted run's first point (start-up, the bed's
+    // settling, the first steps), and two after the run has moved the campaign on by one
+    // point, a random part of the next point later: inside it, or while its checkpoint or the
+    // recording's files are written. Timed from the run's own progress, not from the timeline
+    // alone, so a host busier or idler than when the timeline was taken still spreads the kills
+    // over the campaign instead of letting one run finish it.
     const auto resumed = dir / "resumed";
     const auto checkpoint = resumed / "checkpoints" / "H-0_2g.txt";
     std::mt19937 random(19);
     std::uniform_real_distribution<double> fraction(0.0, 1.5);
+    std::uniform_real_distribution<double> within(0.0, 1.0);
+    using Clock = std::chrono::steady_clock;
+    const auto seconds_since = [](Clock::time_point t) {
+        return std::chrono::duration<double>(Clock::now() - t).count();
+    };
     int killed = 0;
     std::set<int> stages;  // finished points when a kill landed (-1: before the first checkpoint)
-    // The timeline was measured once; a host that gets busier afterwards runs slower, and
-    // kills timed from it would all land before the next checkpoint. Each kill that leaves
-    // the campaign where it was lengthens the next delays by half, until one moves it on.
-    double slower = 1.0;
     for (int k = 0; k < 20; ++k) {
         const int done = points_done(checkpoint);
-        const auto next = static_cast<std::size_t>(std::max(done + 1, 1));
-        const double stretch_s =
-            done < 0 ? at[1] : at[0] + at[std::min(next, at.size() - 1)] - at[next - 1];
         const pid_t child = start_run(config, resumed, dir / "kill.log");
         ASSERT_GT(child, 0);
-        std::this_thread::sleep_for(
-            std::chrono::duration<double>(fraction(random) * stretch_s * slower));
-        kill(child, SIGKILL);
+        const auto started = Clock::now();
         int status = 0;
-        waitpid(child, &status, 0);
-        slower = points_done(checkpoint) == done ? slower * 1.5 : 1.0;
+        bool ended = false;
+        // start-up or the first point (a resumed run's start-up is shorter than at[0], which
+        // pours the bed)
+        double delay_s = fraction(random) * (at[1] - at[0]);
+        if (k % 3 != 0) {
+            // until this run records a point more (or ends) ...
+            while (points_done(checkpoint) <= done) {
+                if (waitpid(child, &status, WNOHANG) == child) {
+                    ended = true;
+                    break;
+                }
+                std::this_thread::sleep_for(std::chrono::milliseconds(2));
+            }
+            // ... then a part of the next point as the timeline took it, stretched by how much
+            // slower than the timeline this run came to here (start-up and that point)
+            const std::size_t reached = static_cast<std::size_t>(done + 1);
+            const std::size_t next = std::min(reached + 1, at.size() - 1);
+            const double timeline_s =
+                at[0] +
+                (reached > 0 ? at[std::min(reached, at.size() - 1)] - at[reached - 1] : 0.0);
+            const double slower = std::max(1.0, seconds_since(started) / timeline_s);
+            delay_s = within(random) * (at[next] - at[next - 1]) * slower;
+        }
+        if (!ended) {
+            std::this_thread::sleep_for(std::chrono::duration<double>(delay_s));
+            kill(child, SIGKILL);
+            waitpid(child, &status, 0);
+        }
         if (WIFSIGNALED(status)) {
             ++killed;
             stages.insert(points_done(checkpoint));
