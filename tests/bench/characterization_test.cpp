@@ -193,13 +193,18 @@ TEST(Characterization, ACantileverTipTurnsAsItsFirstModeSays) {
     EXPECT_NEAR(psi.z(), 0.0, 1e-6 * std::abs(exact));
 }
 
-TEST(Characterization, TheTableIsTheSameOnOneAndTwoThreads) {
+/// The H-0 damper with 30 spheres at the levels of `levels_line` (`levels_g = [...]`).
+CampaignConfig thirty_sphere_h0(const std::string& levels_line, const std::string& name) {
     const std::string text = test::paper000_h0_with({
         {"count = 120", "count = 30"},
         {"max_overlap_fraction", "max_overlap_fraction = 0.05"},
-        {"levels_g", "levels_g = [2.0]"},
+        {"levels_g", levels_line},
     });
-    const auto config = load_campaign_config_text(text, "threads.toml");
+    return load_campaign_config_text(text, name);
+}
+
+TEST(Characterization, TheTableIsTheSameOnOneAndTwoThreads) {
+    const auto config = thirty_sphere_h0("levels_g = [2.0]", "threads.toml");
     CharacterizeOptions options = sb::test::short_characterization(2, 3, 8);
     const auto one = characterize(config, options);
     options.threads = 2;
@@ -212,12 +217,7 @@ TEST(Characterization, TheTableIsTheSameOnOneAndTwoThreads) {
 TEST(Characterization, ARunStillGoingSaysHowManyPeriodsItHasRunAndTheirPace) {
     // A bed of ten thousand spheres takes tens of minutes per run: the lines come every
     // progress_interval_s (here after every period), then the run's own line when it ends.
-    const std::string text = test::paper000_h0_with({
-        {"count = 120", "count = 30"},
-        {"max_overlap_fraction", "max_overlap_fraction = 0.05"},
-        {"levels_g", "levels_g = [2.0]"},
-    });
-    const auto config = load_campaign_config_text(text, "progress.toml");
+    const auto config = thirty_sphere_h0("levels_g = [2.0]", "progress.toml");
     CharacterizeOptions options = sb::test::short_characterization(1, 3, 8);
     options.seeds = 1;
     options.progress_interval_s = 0.0;
@@ -249,12 +249,7 @@ TEST(Characterization, ARunStillGoingSaysHowManyPeriodsItHasRunAndTheirPace) {
 
 /// The 30-sphere H-0 bed at 1 and 2 g: a characterisation cheap enough to run four times.
 CampaignConfig small_h0_bed(const std::string& name) {
-    const std::string text = test::paper000_h0_with({
-        {"count = 120", "count = 30"},
-        {"max_overlap_fraction", "max_overlap_fraction = 0.05"},
-        {"levels_g", "levels_g = [1.0, 2.0]"},
-    });
-    return load_campaign_config_text(text, name);
+    return thirty_sphere_h0("levels_g = [1.0, 2.0]", name);
 }
 
 TEST(Characterization, AnExtendedCharacterisationRunsOnlyWhatTheStoreDoesNotHold) {
