@@ -12,6 +12,7 @@
 #include "bench/characterization.hpp"
 #include "bench/characterization_energy.hpp"
 #include "bench/checkpoint_store.hpp"
+#include "bench/sweep_checkpoint.hpp"
 #include "config/errors.hpp"
 #include "core/text_file.hpp"
 #include "dem/solver.hpp"
@@ -35,6 +36,7 @@ struct CharacterizeArgs {
     int threads = 0;
     bool quiet = false;
     double progress_s = 60.0;
+    double checkpoint_s = 120.0;
     bool energy = false;
     bool restart = false;
     std::vector<std::string> overrides;
@@ -100,6 +102,7 @@ int run(const CharacterizeArgs& args) {
         options.progress = [](const std::string& line) { std::cerr << line << '\n' << std::flush; };
     }
     options.progress_interval_s = args.progress_s;
+    options.checkpoint_interval_s = args.checkpoint_s;
     const int threads = args.threads > 0
                             ? args.threads
                             : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
@@ -167,6 +170,12 @@ int run(const CharacterizeArgs& args) {
         return config::kExitBadInput;
     } catch (const identification::FileError& e) {
         std::cerr << "shakerbench characterize: " << e.what() << '\n';
+        return config::kExitBadInput;
+    } catch (const bench::CheckpointError& e) {
+        std::cerr << "shakerbench characterize: " << e.what()
+                  << "\nshakerbench characterize: that progress cannot be continued: delete "
+                  << e.file()
+                  << " to compute it from its start, or run again with --restart to start over.\n";
         return config::kExitBadInput;
     } catch (const FileWriteError& e) {
         // Not bad input: the same command succeeds once the disk has room or the folder is
@@ -246,6 +255,11 @@ void register_characterize_command(CLI::App& app, int& exit_code) {
     cmd->add_option("--progress-seconds", args->progress_s,
                     "seconds between the lines of a run still going: its periods so far and "
                     "their pace (default 60; 0: after every period)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--checkpoint-seconds", args->checkpoint_s,
+                    "seconds between two saves of a run's progress in DIR/results (at the end of "
+                    "a period; an interrupted run continues from its last save, giving the "
+                    "numbers of an uninterrupted one; default 120; 0: after every period)")
         ->check(CLI::NonNegativeNumber);
     cmd->add_flag("--restart", args->restart,
                   "discard the runs and settled beds stored in the output directory for this "

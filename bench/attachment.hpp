@@ -50,6 +50,9 @@ class DemDamper {
     /// particles keep their enclosure-frame positions, relative velocities and contact
     /// springs (turned with the enclosure), the solver its clock.
     void restore_at(const AttachmentState& state, const PointMotion& motion);
+    /// After restore(): the solver's energy ledger continues `saved`'s cumulative works
+    /// (dem::Solver::continue_energy), as a run resumed from its checkpoint needs.
+    void continue_energy(const dem::EnergyLedger& saved) { solver_->continue_energy(saved); }
 
     void set_frequency(double) {}
 

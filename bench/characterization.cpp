@@ -12,6 +12,7 @@
 
 #include "bench/arrangement.hpp"
 #include "bench/attachment.hpp"
+#include "bench/characterization_progress.hpp"
 #include "bench/resolved_config.hpp"
 #include "config/errors.hpp"
 #include "core/units.hpp"
@@ -54,51 +55,61 @@ std::vector<double> amplitude_spectrum(std::vector<double> x, std::size_t bins) 
     return out;
 }
 
-/// The samples every step of the bed's energy, and the ledger at every period's end.
-struct EnergySamples {
-    std::vector<double> kinetic_j;      ///< after each step
-    std::vector<double> dissipated_j;   ///< cumulative, [0] before the first step
-    std::vector<dem::EnergyLedger> at;  ///< [p]: at the start of period p
-
-    /// Where the energy went over periods [begin, end) of n steps of dt each.
-    BedEnergy over(int begin, int end, int n, double dt) const {
-        BedEnergy out;
-        const double duration = (end - begin) * n * dt;
-        const dem::EnergyInterval interval = dem::energy_between(
-            at[static_cast<std::size_t>(begin)], at[static_cast<std::size_t>(end)], duration);
-        out.normal_damping_w = interval.normal_damping / duration;
-        out.friction_w = interval.friction / duration;
-        out.rolling_w = interval.rolling / duration;
-        out.mechanical_change_w = interval.mechanical_change / duration;
-        for (double layer : interval.layer_dissipation)
-            out.layer_power_w.push_back(layer / duration);
-        out.layer_kinetic_j = interval.layer_kinetic_mean;
-        const auto first = static_cast<std::size_t>(begin) * static_cast<std::size_t>(n);
-        const auto last = static_cast<std::size_t>(end) * static_cast<std::size_t>(n);
-        std::vector<double> kinetic(kinetic_j.begin() + static_cast<std::ptrdiff_t>(first),
-                                    kinetic_j.begin() + static_cast<std::ptrdiff_t>(last));
-        std::vector<double> power;
-        for (std::size_t j = first; j < last; ++j) {
-            power.push_back((dissipated_j[j + 1] - dissipated_j[j]) / dt);
-        }
-        for (double k : kinetic) out.kinetic_lab_j += k / static_cast<double>(kinetic.size());
-        out.bin_hz = 1.0 / duration;
-        const auto bins = static_cast<std::size_t>(BedEnergy::kSpectrumHarmonics * (end - begin));
-        out.kinetic_amplitude_j = amplitude_spectrum(std::move(kinetic), bins);
-        out.dissipation_amplitude_w = amplitude_spectrum(std::move(power), bins);
-        return out;
+/// A progress that does not fit the run it is to continue (another bed or step, more periods
+/// than the budget, energy samples that do not add up) is refused, not continued.
+void check_fits(const RunProgress& p, int steps_per_period, int particles, bool bed_energy,
+                int max_periods) {
+    const auto periods = p.periods.size();
+    const auto steps = periods * static_cast<std::size_t>(steps_per_period);
+    const auto& e = p.energy;
+    std::string problem;
+    if (p.steps_per_period != steps_per_period) {
+        problem = std::to_string(p.steps_per_period) + " steps per period, the run takes " +
+                  std::to_string(steps_per_period);
+    } else if (!p.damper.dem ||
+               p.damper.dem->positions_m.size() != static_cast<std::size_t>(particles)) {
+        problem = "its bed is not the run's bed of " + std::to_string(particles) + " particles";
+    } else if (periods < 1 || periods >= static_cast<std::size_t>(max_periods)) {
+        problem = std::to_string(periods) + " periods done, the run's budget is " +
+                  std::to_string(max_periods);
+    } else if (bed_energy ? (e.kinetic_j.size() != steps || e.dissipated_j.size() != steps + 1 ||
+                             e.at.size() != periods)
+                          : !(e.kinetic_j.empty() && e.dissipated_j.empty() && e.at.empty())) {
+        problem = bed_energy ? "its energy samples do not cover its periods"
+                             : "it holds energy samples the run does not take";
     }
-};
-
-/// One period's measurements.
-struct Period {
-    std::complex<double> q1, q2, q3;  ///< harmonics of the generalised force [N]
-    double wall_work_j = 0.0;
-    double stored_at_start_j = 0.0;  ///< the bed's mechanical energy at the period's start
-    double kinetic_j = 0.0;          ///< mean over the period's samples
-};
+    if (!problem.empty())
+        throw std::invalid_argument("the progress does not fit the run: " + problem);
+}
 
 }  // namespace
+
+BedEnergy EnergySamples::over(int begin, int end, int n, double dt) const {
+    BedEnergy out;
+    const double duration = (end - begin) * n * dt;
+    const dem::EnergyInterval interval = dem::energy_between(
+        at[static_cast<std::size_t>(begin)], at[static_cast<std::size_t>(end)], duration);
+    out.normal_damping_w = interval.normal_damping / duration;
+    out.friction_w = interval.friction / duration;
+    out.rolling_w = interval.rolling / duration;
+    out.mechanical_change_w = interval.mechanical_change / duration;
+    for (double layer : interval.layer_dissipation) out.layer_power_w.push_back(layer / duration);
+    out.layer_kinetic_j = interval.layer_kinetic_mean;
+    const auto first = static_cast<std::size_t>(begin) * static_cast<std::size_t>(n);
+    const auto last = static_cast<std::size_t>(end) * static_cast<std::size_t>(n);
+    std::vector<double> kinetic(kinetic_j.begin() + static_cast<std::ptrdiff_t>(first),
+                                kinetic_j.begin() + static_cast<std::ptrdiff_t>(last));
+    std::vector<double> power;
+    for (std::size_t j = first; j < last; ++j) {
+        power.push_back((dissipated_j[j + 1] - dissipated_j[j]) / dt);
+    }
+    for (double k : kinetic) out.kinetic_lab_j += k / static_cast<double>(kinetic.size());
+    out.bin_hz = 1.0 / duration;
+    const auto bins = static_cast<std::size_t>(BedEnergy::kSpectrumHarmonics * (end - begin));
+    out.kinetic_amplitude_j = amplitude_spectrum(std::move(kinetic), bins);
+    out.dissipation_amplitude_w = amplitude_spectrum(std::move(power), bins);
+    return out;
+}
 
 Violations SteadyStateOptions::validate() const {
     Violations out;
@@ -143,7 +154,8 @@ std::string SteadyStateOptions::describe() const {
 
 ApparentMassPoint measure_apparent_mass(const EnclosureSetup& setup, const HarmonicDrive& drive,
                                         const SteadyStateOptions& steady,
-                                        const std::function<void(int)>& after_period) {
+                                        const std::function<void(int)>& after_period,
+                                        const RunCheckpoints& checkpoints) {
     if (const auto v = steady.validate(); !v.empty()) {
         throw std::invalid_argument("steady-state criterion: " + v.front().key + " " +
                                     v.front().constraint);
@@ -168,17 +180,34 @@ ApparentMassPoint measure_apparent_mass(const EnclosureSetup& setup, const Harmo
     options.track_energy = true;  // the wall work per period is the dissipated power
     DemDamper damper(options, setup.mount_rotation, setup.offset_m, setup.bed,
                      Eigen::Vector3d::Zero());
-    {
+    ApparentMassPoint out;
+    out.steps_per_period = n;
+    for (double inv : damper.solver().particles().inv_mass) out.bed_mass_kg += 1.0 / inv;
+
+    std::vector<PeriodMeasurement> periods;
+    EnergySamples samples_of_energy;
+    // The ledger at the latest period boundary: one O(N + contacts) snapshot per period, the
+    // end of one period being the start of the next.
+    dem::EnergyLedger boundary;
+    if (const RunProgress* resume = checkpoints.resume) {
+        check_fits(*resume, n, static_cast<int>(setup.bed.positions_m.size()), setup.bed_energy,
+                   steady.max_periods);
+        damper.restore(resume->damper);  // at its own pose: bitwise where it was
+        damper.continue_energy(resume->boundary);
+        periods = resume->periods;
+        samples_of_energy = resume->energy;
+        boundary = resume->boundary;
+    } else {
         // The bed starts riding with its enclosure at the drive's initial velocity (the
         // campaign's start carries it the same way), not hit by walls that jump to it.
         PointMotion start;
         start.velocity_m_s = -x_peak * w * d;
         start.angular_velocity_rad_s = -x_peak * w * psi;
         damper.restore_at(damper.state_at(PointMotion{}), start);
+        if (setup.bed_energy)
+            samples_of_energy.dissipated_j.push_back(damper.solver().dissipated_j());
+        boundary = damper.solver().energy();
     }
-    ApparentMassPoint out;
-    out.steps_per_period = n;
-    for (double inv : damper.solver().particles().inv_mass) out.bed_mass_kg += 1.0 / inv;
 
     std::vector<std::complex<double>> e1(static_cast<std::size_t>(n));
     std::vector<std::complex<double>> e2(e1.size());
@@ -196,19 +225,35 @@ ApparentMassPoint measure_apparent_mass(const EnclosureSetup& setup, const Harmo
     // The kinetic energy a rigid bed carries riding its enclosure, 1/2 m (A/w)^2: the scale of
     // the stored energy's change when the walls hardly work on the bed (a held bed).
     const double riding_j = 0.5 * out.bed_mass_kg * std::pow(amplitude / w, 2);
-
-    std::vector<Period> periods;
-    EnergySamples samples_of_energy;
-    if (setup.bed_energy) samples_of_energy.dissipated_j.push_back(damper.solver().dissipated_j());
     const int w_periods = steady.window_periods;
-    int window_end = 0;
-    // The ledger at the latest period boundary: one O(N + contacts) snapshot per period, the
-    // end of one period being the start of the next.
-    dem::EnergyLedger boundary = damper.solver().energy();
-    for (int p = 0; p < steady.max_periods; ++p) {
+    // Whether the run is steady after `count` periods (SteadyStateOptions).
+    const auto steady_after = [&](int count) {
+        if (count < steady.transient_periods + 2 * w_periods) return false;
+        if (steady.energy_tolerance > 0.0) {
+            const auto first = static_cast<std::size_t>(count - 2 * w_periods);
+            double work = 0.0;
+            for (std::size_t k = first; k < periods.size(); ++k) work += periods[k].wall_work_j;
+            const double change = boundary.mechanical() - periods[first].stored_at_start_j;
+            if (std::abs(change) > steady.energy_tolerance * std::max(std::abs(work), riding_j)) {
+                return false;
+            }
+        }
+        std::complex<double> a = 0.0;
+        std::complex<double> b = 0.0;
+        for (int k = count - 2 * w_periods; k < count - w_periods; ++k) {
+            a += periods[static_cast<std::size_t>(k)].q1;
+        }
+        for (int k = count - w_periods; k < count; ++k) {
+            b += periods[static_cast<std::size_t>(k)].q1;
+        }
+        return std::abs(b - a) / w_periods <= steady.tolerance * scale;
+    };
+
+    int window_end = static_cast<int>(periods.size());
+    for (int p = window_end; p < steady.max_periods; ++p) {
         if (setup.bed_energy) samples_of_energy.at.push_back(boundary);
         const double work_begin = boundary.wall_work;
-        Period period;
+        PeriodMeasurement period;
         period.stored_at_start_j = boundary.mechanical();
         double kinetic = 0.0;
         int samples = 0;
@@ -248,27 +293,13 @@ ApparentMassPoint measure_apparent_mass(const EnclosureSetup& setup, const Harmo
         const int count = p + 1;
         window_end = count;
         if (after_period) after_period(count);
-        if (count < steady.transient_periods + 2 * w_periods) continue;
-        if (steady.energy_tolerance > 0.0) {
-            const auto first = static_cast<std::size_t>(count - 2 * w_periods);
-            double work = 0.0;
-            for (std::size_t k = first; k < periods.size(); ++k) work += periods[k].wall_work_j;
-            const double change = boundary.mechanical() - periods[first].stored_at_start_j;
-            if (std::abs(change) > steady.energy_tolerance * std::max(std::abs(work), riding_j)) {
-                continue;
-            }
-        }
-        std::complex<double> a = 0.0;
-        std::complex<double> b = 0.0;
-        for (int k = count - 2 * w_periods; k < count - w_periods; ++k) {
-            a += periods[static_cast<std::size_t>(k)].q1;
-        }
-        for (int k = count - w_periods; k < count; ++k) {
-            b += periods[static_cast<std::size_t>(k)].q1;
-        }
-        if (std::abs(b - a) / w_periods <= steady.tolerance * scale) {
+        if (steady_after(count)) {
             out.settled = true;
             break;
+        }
+        if (count < steady.max_periods && checkpoints.save && checkpoints.due &&
+            checkpoints.due()) {
+            checkpoints.save({n, damper.state(), boundary, periods, samples_of_energy});
         }
     }
     out.periods = window_end;
@@ -283,7 +314,7 @@ ApparentMassPoint measure_apparent_mass(const EnclosureSetup& setup, const Harmo
     std::complex<double> q3 = 0.0;
     double work = 0.0;
     for (int k = begin; k < window_end; ++k) {
-        const Period& period = periods[static_cast<std::size_t>(k)];
+        const PeriodMeasurement& period = periods[static_cast<std::size_t>(k)];
         q1 += period.q1 / count;
         q2 += period.q2 / count;
         q3 += period.q3 / count;

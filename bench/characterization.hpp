@@ -18,6 +18,7 @@
 
 #include "bench/campaign_config.hpp"
 #include "bench/campaign_plan.hpp"
+#include "bench/characterization_progress.hpp"
 #include "bench/checkpoint_store.hpp"
 #include "bench/describing_function.hpp"
 #include "core/violation.hpp"
@@ -122,11 +123,14 @@ struct ApparentMassPoint {
 
 /// Runs the damper of `setup` under `drive` until steady (or the budget) and measures it;
 /// `after_period`, when given, is called after every period with the number done (the
-/// progress of a long run). Throws dem::SimulationError when a DEM guard fires,
-/// std::invalid_argument for a drive or criterion it cannot run.
+/// progress of a long run). With `checkpoints`, saves the run's progress at the ends of
+/// periods it asks for, or continues a saved one: the result is bitwise the uninterrupted
+/// run's. Throws dem::SimulationError when a DEM guard fires, std::invalid_argument for a
+/// drive or criterion it cannot run, or a progress that does not fit the run.
 ApparentMassPoint measure_apparent_mass(const EnclosureSetup& setup, const HarmonicDrive& drive,
                                         const SteadyStateOptions& steady,
-                                        const std::function<void(int)>& after_period = {});
+                                        const std::function<void(int)>& after_period = {},
+                                        const RunCheckpoints& checkpoints = {});
 
 /// Rotation per unit translation along `direction` of `point` in the first mode the
 /// excitation drives (the structure with the particles as rigid mass) [rad/m]: a cantilever's
@@ -153,6 +157,10 @@ struct CharacterizeOptions {
     /// Wall time between the lines of a run still going (a bed of ten thousand spheres takes
     /// tens of minutes per run) [s]; 0: after every period.
     double progress_interval_s = 60.0;
+    /// Wall time between two saves of a run's progress in `store` (at the end of a period):
+    /// a run of a bed of tens of thousands of spheres takes hours, and an interrupted one
+    /// continues from its last save, bitwise as if uninterrupted [s]; 0: after every period.
+    double checkpoint_interval_s = 120.0;
     std::string command_line;  ///< for the file's header
     /// Runs the grid in other processes (MPI ranks; distributed/rounds.hpp): given each run's
     /// number as text, returns each one's result as text (CharacterizationWorker::run's
@@ -168,7 +176,8 @@ struct CharacterizeOptions {
     /// simulates only what the store does not hold, and gives the numbers an uninterrupted
     /// one gives. Each run is kept under a key of everything its numbers depend on beyond the
     /// config (level, frequency, filling, contact stiffness and step, the criterion, the
-    /// rotation, the energy layers). Null: nothing kept.
+    /// rotation, the energy layers); a run still going keeps its progress there too
+    /// (checkpoint_interval_s). Null: nothing kept.
     CheckpointStore* store = nullptr;
     bool restart = false;  ///< the store forgets what it holds for this config first
 };

@@ -10,13 +10,16 @@
 #include <cstdlib>
 #include <exception>
 #include <map>
+#include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
 #include "bench/arrangement.hpp"
 #include "bench/attachment.hpp"
 #include "bench/characterization.hpp"
+#include "bench/characterization_progress.hpp"
 #include "bench/resolved_config.hpp"
 #include "bench/settled_bed.hpp"
 #include "bench/sweep_checkpoint.hpp"
@@ -69,6 +72,9 @@ struct CharacterizationGrid {
         ApparentMassPoint result;
         std::string key;      ///< the store's key
         bool stored = false;  ///< read back from the store
+        /// Where an interrupted run stands, read back from the store (released once the run
+        /// has continued it).
+        std::optional<RunProgress> progress;
     };
     std::vector<double> levels;
     std::vector<const DamperSpec*> dampers;
@@ -243,7 +249,9 @@ CharacterizationGrid plan_grid(const CampaignConfig& config, const CharacterizeO
         }
     }
     for (std::size_t b = 0; b < beds.size(); ++b) {
-        for (double f : grids[beds[b].arrangement]) grid_plan.runs.push_back({b, f, {}, {}, false});
+        for (double f : grids[beds[b].arrangement]) {
+            grid_plan.runs.push_back({b, f, {}, {}, false, std::nullopt});
+        }
     }
     assign_keys(grid_plan, options);
     return grid_plan;
@@ -264,11 +272,13 @@ dem::ParticleSet settle(const CharacterizationGrid& grid, std::size_t b, Checkpo
     return particles;
 }
 
-/// Run `r` of the grid on its settled bed; `after_period` as measure_apparent_mass's.
+/// Run `r` of the grid on its settled bed; `after_period` and `checkpoints` as
+/// measure_apparent_mass's.
 ApparentMassPoint measure(const CampaignConfig& config, const CharacterizeOptions& options,
                           const CharacterizationGrid& grid, std::size_t r,
                           const dem::ParticleSet& particles,
-                          const std::function<void(int)>& after_period = {}) {
+                          const std::function<void(int)>& after_period = {},
+                          const RunCheckpoints& checkpoints = {}) {
     const Eigen::Vector3d direction = config.structure.excitation.direction.normalized();
     const auto& run = grid.runs[r];
     const auto& bed = grid.beds[run.bed];
@@ -289,7 +299,7 @@ ApparentMassPoint measure(const CampaignConfig& config, const CharacterizeOption
         grid.rotations[bed.arrangement * grid.dampers.size() + grid.damper_index(bed.damper)];
     drive.acceleration_m_s2 = std::sqrt(2.0) * g_to_m_s2(bed.level_g);
     drive.frequency_hz = run.frequency_hz;
-    return measure_apparent_mass(setup, drive, options.steady, after_period);
+    return measure_apparent_mass(setup, drive, options.steady, after_period, checkpoints);
 }
 
 /// A list as its length and its values.
@@ -397,6 +407,27 @@ void report(const CharacterizeOptions& options, const CharacterizationGrid& grid
 /// A run's result text as the store keeps it: a line, then its checksum line.
 std::string sealed(const std::string& point) { return seal_checkpoint(point + '\n'); }
 
+/// Where run `run` saves its progress (every options.checkpoint_interval_s of wall time) and
+/// the progress it continues; none without a store. A progress that does not fit the run
+/// throws CheckpointError naming it.
+RunCheckpoints checkpoints_of(const CharacterizeOptions& options,
+                              const CharacterizationGrid::Run& run) {
+    RunCheckpoints checkpoints;
+    CheckpointStore* store = options.store;
+    if (store == nullptr) return checkpoints;
+    checkpoints.resume = run.progress ? &*run.progress : nullptr;
+    using Clock = std::chrono::steady_clock;
+    auto last = std::make_shared<Clock::time_point>(Clock::now());
+    checkpoints.due = [last, interval = options.checkpoint_interval_s] {
+        return std::chrono::duration<double>(Clock::now() - *last).count() >= interval;
+    };
+    checkpoints.save = [last, store, key = run.key](const RunProgress& progress) {
+        store->save_progress(Unfinished::result, key, serialize_run_progress(progress));
+        *last = Clock::now();
+    };
+    return checkpoints;
+}
+
 /// Every run not yet in the store on this process's threads: the beds they need settled
 /// first (or read from the store), then the runs, each kept in the store as it ends; the
 /// numbers depend neither on the thread count nor on the order they finish in. No exception
@@ -439,21 +470,35 @@ int run_here(const CampaignConfig& config, const CharacterizeOptions& options,
             using Clock = std::chrono::steady_clock;
             const auto start = Clock::now();
             auto last = start;
+            const int continued = run.progress ? static_cast<int>(run.progress->periods.size()) : 0;
+            if (continued > 0 && options.progress) {
+                std::lock_guard<std::mutex> lock(progress_mutex);
+                options.progress("  " + run_name(grid, r) + ": continues from its progress after " +
+                                 std::to_string(continued) + " periods");
+            }
             const auto going = [&](int periods) {
                 const auto now = Clock::now();
                 if (!options.progress ||
                     std::chrono::duration<double>(now - last).count() < options.progress_interval_s)
                     return;
                 last = now;
-                const double per_period =
-                    std::chrono::duration<double>(now - start).count() / periods;
+                const double per_period = std::chrono::duration<double>(now - start).count() /
+                                          std::max(1, periods - continued);
                 std::lock_guard<std::mutex> lock(progress_mutex);
                 options.progress("  " + run_name(grid, r) + ": " + std::to_string(periods) +
                                  " periods of at most " +
                                  std::to_string(options.steady.max_periods) + ", " +
                                  significant_text(per_period, 3) + " s per period");
             };
-            run.result = measure(config, options, grid, r, beds[grid.beds[run.bed].same_as], going);
+            try {
+                run.result = measure(config, options, grid, r, beds[grid.beds[run.bed].same_as],
+                                     going, checkpoints_of(options, run));
+            } catch (const std::invalid_argument& e) {
+                if (!run.progress) throw;
+                throw CheckpointError(options.store->progress_name(Unfinished::result, run.key), 0,
+                                      e.what());
+            }
+            run.progress.reset();
             if (options.store != nullptr) {
                 options.store->save_result(run.key, sealed(point_text(run.result)));
             }
@@ -500,7 +545,26 @@ void run_remotely(const CharacterizeOptions& options, CharacterizationGrid& grid
     }
 }
 
-/// Opens the store and reads back every run it holds. A stored result that is damaged is
+/// The progress the store holds for the unfinished run `run`, if any; a damaged one is added
+/// to `problems`.
+void read_progress(CheckpointStore& store, CharacterizationGrid::Run& run,
+                   std::vector<config::ConfigError>& problems) {
+    const std::optional<std::string> text = store.load_progress(Unfinished::result, run.key);
+    if (!text) return;
+    const std::string name = store.progress_name(Unfinished::result, run.key);
+    try {
+        run.progress = parse_run_progress(*text, name);
+    } catch (const CheckpointError& e) {
+        problems.push_back(
+            {name, 0, 0, "(run progress)", "",
+             (e.line() > 0 ? "line " + std::to_string(e.line()) + ": " : "") + e.message(),
+             "cannot be continued: delete it to run that point from its start, or "
+             "run again with --restart to discard every stored result"});
+    }
+}
+
+/// Opens the store and reads back every run it holds, and the progress of those it holds
+/// unfinished. A stored result that is damaged is
 /// refused before anything runs, every one named.
 void resume_from_store(const CampaignConfig& config, const CharacterizeOptions& options,
                        CharacterizationGrid& grid) {
@@ -510,7 +574,10 @@ void resume_from_store(const CampaignConfig& config, const CharacterizeOptions& 
     std::vector<config::ConfigError> problems;
     for (auto& run : grid.runs) {
         const std::optional<std::string> text = store->load_result(run.key);
-        if (!text) continue;
+        if (!text) {
+            read_progress(*store, run, problems);
+            continue;
+        }
         const std::string content(checkpoint_content(*text));
         std::string damage;
         if (seal_checkpoint(content) != *text) {

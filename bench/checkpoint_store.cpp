@@ -130,25 +130,28 @@ std::optional<std::string> FileCheckpointStore::load_bed(const std::string& bed_
 void FileCheckpointStore::save_bed(const std::string& bed_key, const std::string& text) {
     save_file("settled/" + bed_key + "_" + hash_ + ".csv", text);
     std::error_code ignored;  // the progress is of no use once the bed is there
-    fs::remove(settling_name(bed_key), ignored);
+    fs::remove(progress_name(Unfinished::bed, bed_key), ignored);
 }
 
-std::string FileCheckpointStore::settling_file(const std::string& bed_key) const {
-    return "settled/" + bed_key + "_" + hash_ + ".settling.txt";
+std::string FileCheckpointStore::progress_file(Unfinished work, const std::string& key) const {
+    return work == Unfinished::bed ? "settled/" + key + "_" + hash_ + ".settling.txt"
+                                   : "results/" + key + "_" + hash_ + ".progress.txt";
 }
 
-std::string FileCheckpointStore::settling_name(const std::string& bed_key) const {
-    return (directory_ / settling_file(bed_key)).string();
+std::string FileCheckpointStore::progress_name(Unfinished work, const std::string& key) const {
+    return (directory_ / progress_file(work, key)).string();
 }
 
-std::optional<std::string> FileCheckpointStore::load_settling(const std::string& bed_key) {
-    const fs::path file = settling_name(bed_key);
+std::optional<std::string> FileCheckpointStore::load_progress(Unfinished work,
+                                                              const std::string& key) {
+    const fs::path file = progress_name(work, key);
     if (!fs::exists(file)) return std::nullopt;
     return read_text_file(file);
 }
 
-void FileCheckpointStore::save_settling(const std::string& bed_key, const std::string& text) {
-    save_file(settling_file(bed_key), text);
+void FileCheckpointStore::save_progress(Unfinished work, const std::string& key,
+                                        const std::string& text) {
+    save_file(progress_file(work, key), text);
 }
 
 std::string FileCheckpointStore::result_name(const std::string& result_key) const {
@@ -164,6 +167,8 @@ std::optional<std::string> FileCheckpointStore::load_result(const std::string& r
 
 void FileCheckpointStore::save_result(const std::string& result_key, const std::string& text) {
     save_file("results/" + result_key + "_" + hash_ + ".txt", text);
+    std::error_code ignored;  // as a bed's: the run's progress is of no use once it has ended
+    fs::remove(progress_name(Unfinished::result, result_key), ignored);
 }
 
 void FileCheckpointStore::save_file(const std::string& relative_path, const std::string& text) {
@@ -178,13 +183,18 @@ void MemoryCheckpointStore::open(const std::string& config_hash, bool restart) {
     hash_ = config_hash;
     if (restart) {
         const std::string prefix = hash_ + "/";
-        for (auto* map : {&checkpoints_, &beds_, &settling_, &results_, &files_}) {
+        for (auto* map : {&checkpoints_, &beds_, &progress_, &results_, &files_}) {
             std::erase_if(*map, [&](const auto& kv) { return kv.first.rfind(prefix, 0) == 0; });
         }
     }
 }
 
 namespace {
+/// Under the config's hash, as every entry (a restart drops them by it), then the kind.
+std::string progress_key(const std::string& hash, Unfinished work, const std::string& key) {
+    return hash + (work == Unfinished::bed ? "/bed/" : "/result/") + key;
+}
+
 std::optional<std::string> find(const std::map<std::string, std::string>& map,
                                 const std::string& key) {
     const auto it = map.find(key);
@@ -211,17 +221,19 @@ std::optional<std::string> MemoryCheckpointStore::load_bed(const std::string& be
 void MemoryCheckpointStore::save_bed(const std::string& bed_key, const std::string& text) {
     std::lock_guard<std::mutex> lock(mutex_);
     beds_[hash_ + "/" + bed_key] = text;
-    settling_.erase(hash_ + "/" + bed_key);
+    progress_.erase(progress_key(hash_, Unfinished::bed, bed_key));
 }
 
-std::optional<std::string> MemoryCheckpointStore::load_settling(const std::string& bed_key) {
+std::optional<std::string> MemoryCheckpointStore::load_progress(Unfinished work,
+                                                                const std::string& key) {
     std::lock_guard<std::mutex> lock(mutex_);
-    return find(settling_, hash_ + "/" + bed_key);
+    return find(progress_, progress_key(hash_, work, key));
 }
 
-void MemoryCheckpointStore::save_settling(const std::string& bed_key, const std::string& text) {
+void MemoryCheckpointStore::save_progress(Unfinished work, const std::string& key,
+                                          const std::string& text) {
     std::lock_guard<std::mutex> lock(mutex_);
-    settling_[hash_ + "/" + bed_key] = text;
+    progress_[progress_key(hash_, work, key)] = text;
 }
 
 std::optional<std::string> MemoryCheckpointStore::load_result(const std::string& result_key) {
@@ -232,6 +244,7 @@ std::optional<std::string> MemoryCheckpointStore::load_result(const std::string&
 void MemoryCheckpointStore::save_result(const std::string& result_key, const std::string& text) {
     std::lock_guard<std::mutex> lock(mutex_);
     results_[hash_ + "/" + result_key] = text;
+    progress_.erase(progress_key(hash_, Unfinished::result, result_key));
 }
 
 void MemoryCheckpointStore::save_file(const std::string& relative_path, const std::string& text) {

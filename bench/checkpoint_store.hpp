@@ -12,6 +12,12 @@
 
 namespace sb::bench {
 
+/// What a saved progress belongs to (CheckpointStore::load_progress).
+enum class Unfinished {
+    bed,     ///< a bed settling
+    result,  ///< a characterisation run
+};
+
 /// A store is opened for one config (its hash) and then read and written by the sweeps,
 /// possibly from several threads at once (each sweep its own keys). Texts are stored as
 /// they are: a checkpoint and a bed are always read back through their text form, so a
@@ -33,16 +39,20 @@ class CheckpointStore {
     virtual std::optional<std::string> load_bed(const std::string& bed_key) = 0;
     virtual void save_bed(const std::string& bed_key, const std::string& text) = 0;
 
-    /// A bed still settling (serialize_pour_progress()'s text), by the bed's key: a pour of
-    /// many spheres saves its progress as it goes and continues from it after an interruption;
-    /// saving the settled bed drops it. A store that keeps none returns nothing.
-    virtual std::optional<std::string> load_settling(const std::string& /*bed_key*/) {
+    /// Work long enough to save its progress as it goes, kept under the key of what it will
+    /// give: a bed still settling (serialize_pour_progress()'s text, by the bed's key; saving
+    /// the settled bed drops it) and a characterisation run between its periods
+    /// (serialize_run_progress()'s text, by the result's key; saving the result drops it). An
+    /// interrupted pour or run continues from it. A store that keeps none returns nothing.
+    virtual std::optional<std::string> load_progress(Unfinished /*work*/,
+                                                     const std::string& /*key*/) {
         return std::nullopt;
     }
-    virtual void save_settling(const std::string& /*bed_key*/, const std::string& /*text*/) {}
-    /// How messages name a bed's settling progress (its file, for a file store).
-    [[nodiscard]] virtual std::string settling_name(const std::string& bed_key) const {
-        return bed_key + " (settling)";
+    virtual void save_progress(Unfinished /*work*/, const std::string& /*key*/,
+                               const std::string& /*text*/) {}
+    /// How messages name a progress (its file, for a file store).
+    [[nodiscard]] virtual std::string progress_name(Unfinished work, const std::string& key) const {
+        return key + (work == Unfinished::bed ? " (settling)" : " (in progress)");
     }
 
     /// A finished unit of work that is not a sweep (a characterisation run: one grid point on
@@ -65,10 +75,11 @@ class CheckpointStore {
 };
 
 /// Checkpoints in DIR/checkpoints/<sweep>.txt, beds in DIR/settled/<bed>_<hash>.csv (while
-/// settling, DIR/settled/<bed>_<hash>.settling.txt), results
-/// in DIR/results/<key>_<hash>.txt, files under DIR: the recording directory the CLI writes. Every
-/// file goes through a rename, so a kill never leaves half of one; a file that cannot be written
-/// throws sb::FileWriteError naming it, and the files written before stay as they were.
+/// settling, DIR/settled/<bed>_<hash>.settling.txt), results in DIR/results/<key>_<hash>.txt
+/// (while running, DIR/results/<key>_<hash>.progress.txt), files under DIR: the recording directory
+/// the CLI writes. Every file goes through a rename, so a kill never leaves half of one; a file
+/// that cannot be written throws sb::FileWriteError naming it, and the files written before stay as
+/// they were.
 class FileCheckpointStore : public CheckpointStore {
   public:
     explicit FileCheckpointStore(std::filesystem::path directory);
@@ -84,9 +95,9 @@ class FileCheckpointStore : public CheckpointStore {
     void save_checkpoint(const std::string& sweep_key, const std::string& text) override;
     std::optional<std::string> load_bed(const std::string& bed_key) override;
     void save_bed(const std::string& bed_key, const std::string& text) override;
-    std::optional<std::string> load_settling(const std::string& bed_key) override;
-    void save_settling(const std::string& bed_key, const std::string& text) override;
-    [[nodiscard]] std::string settling_name(const std::string& bed_key) const override;
+    std::optional<std::string> load_progress(Unfinished work, const std::string& key) override;
+    void save_progress(Unfinished work, const std::string& key, const std::string& text) override;
+    [[nodiscard]] std::string progress_name(Unfinished work, const std::string& key) const override;
     std::optional<std::string> load_result(const std::string& result_key) override;
     void save_result(const std::string& result_key, const std::string& text) override;
     void save_file(const std::string& relative_path, const std::string& text) override;
@@ -95,8 +106,8 @@ class FileCheckpointStore : public CheckpointStore {
   private:
     void check_writable() const;
     void remove_partial_files() const;
-    /// A bed's settling progress, relative to the directory.
-    [[nodiscard]] std::string settling_file(const std::string& bed_key) const;
+    /// A progress's file, relative to the directory.
+    [[nodiscard]] std::string progress_file(Unfinished work, const std::string& key) const;
 
     std::filesystem::path directory_;
     std::string hash_;
@@ -110,8 +121,8 @@ class MemoryCheckpointStore : public CheckpointStore {
     void save_checkpoint(const std::string& sweep_key, const std::string& text) override;
     std::optional<std::string> load_bed(const std::string& bed_key) override;
     void save_bed(const std::string& bed_key, const std::string& text) override;
-    std::optional<std::string> load_settling(const std::string& bed_key) override;
-    void save_settling(const std::string& bed_key, const std::string& text) override;
+    std::optional<std::string> load_progress(Unfinished work, const std::string& key) override;
+    void save_progress(Unfinished work, const std::string& key, const std::string& text) override;
     std::optional<std::string> load_result(const std::string& result_key) override;
     void save_result(const std::string& result_key, const std::string& text) override;
     void save_file(const std::string& relative_path, const std::string& text) override;
@@ -123,7 +134,7 @@ class MemoryCheckpointStore : public CheckpointStore {
     std::string hash_;
     std::map<std::string, std::string> checkpoints_;
     std::map<std::string, std::string> beds_;
-    std::map<std::string, std::string> settling_;
+    std::map<std::string, std::string> progress_;  ///< by kind, hash and key
     std::map<std::string, std::string> results_;
     std::map<std::string, std::string> files_;
 };

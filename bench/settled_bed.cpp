@@ -21,8 +21,8 @@ dem::ParticleSet pour_with_checkpoints(const dem::SolverOptions& local,
                                        double interval_s) {
     using Clock = std::chrono::steady_clock;
     std::optional<dem::PourProgress> progress;
-    if (const auto text = store.load_settling(key)) {
-        progress = parse_pour_progress(*text, store.settling_name(key));
+    if (const auto text = store.load_progress(Unfinished::bed, key)) {
+        progress = parse_pour_progress(*text, store.progress_name(Unfinished::bed, key));
     }
     auto last = Clock::now();
     dem::PourCheckpoints checkpoints;
@@ -30,7 +30,7 @@ dem::ParticleSet pour_with_checkpoints(const dem::SolverOptions& local,
         return std::chrono::duration<double>(Clock::now() - last).count() >= interval_s;
     };
     checkpoints.save = [&](const dem::PourProgress& p) {
-        store.save_settling(key, serialize_pour_progress(p));
+        store.save_progress(Unfinished::bed, key, serialize_pour_progress(p));
         last = Clock::now();
     };
     checkpoints.resume = progress ? &*progress : nullptr;
@@ -38,7 +38,7 @@ dem::ParticleSet pour_with_checkpoints(const dem::SolverOptions& local,
         return dem::pour(local, seed, settle, {}, checkpoints);
     } catch (const std::invalid_argument& e) {
         if (!progress) throw;
-        throw CheckpointError(store.settling_name(key), 0, e.what());
+        throw CheckpointError(store.progress_name(Unfinished::bed, key), 0, e.what());
     }
 }
 

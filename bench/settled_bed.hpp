@@ -28,7 +28,7 @@ inline constexpr double kSettlingCheckpointIntervalS = 120.0;
 /// `checkpoint_interval_s` of wall time while it settles (a bed of tens of thousands of spheres
 /// settles for hours) and continues from the progress stored there: an interrupted settle
 /// resumes, bitwise as if uninterrupted. A stored progress that is damaged or does not fit
-/// this bed throws CheckpointError naming it (store.settling_name(key)).
+/// this bed throws CheckpointError naming it (store.progress_name(Unfinished::bed, key)).
 dem::ParticleSet settled_bed(const DamperSpec& damper, double stiffness,
                              const Eigen::Matrix3d& rotation, const Eigen::Vector3d& gravity_m_s2,
                              std::uint64_t seed, CheckpointStore* store, const std::string& key,

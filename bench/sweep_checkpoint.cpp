@@ -6,21 +6,28 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "bench/checkpoint_text.hpp"
 #include "config/write.hpp"
 
 namespace sb::bench {
 namespace {
 
+using checkpoint::check_sealed;
+using checkpoint::kChecksumKey;
+using checkpoint::kMaxCount;
+using checkpoint::kMaxVectorSize;
+using checkpoint::read_count;
+using checkpoint::read_dem_state;
+using checkpoint::read_vector;
+using checkpoint::Reader;
+using checkpoint::write_dem_state;
+using checkpoint::write_vector;
+using checkpoint::Writer;
+
 /// The first line. Format 4 added the checksum line, 5 the numerics line.
 constexpr const char* kMagic = "shakerbench-sweep-checkpoint 5";
 constexpr std::string_view kMagicPrefix = "shakerbench-sweep-checkpoint ";
-/// The last line: the 64-bit FNV-1a of every byte before it. A file cut short, or with a byte
-/// changed on disk, fails it; the rename that writes a checkpoint never leaves half a file, but
-/// a disk or a copy can.
-constexpr std::string_view kChecksumKey = "checksum fnv1a64 ";
-/// Sizes no sweep reaches: a count past them is damage, not a reason to allocate.
-constexpr long long kMaxVectorSize = 100000;
-constexpr long long kMaxCount = 100000000;
+/// Points no sweep reaches: a count past it is damage.
 constexpr long long kMaxPoints = 1000000;
 /// The first line of a pour's progress (settled_bed.hpp); sealed as a sweep checkpoint is.
 constexpr const char* kPourMagic = "shakerbench-pour-progress 1";
@@ -28,269 +35,6 @@ constexpr std::string_view kPourMagicPrefix = "shakerbench-pour-progress ";
 /// The first line of a finished sweep sent from one process to another (no checksum: the
 /// transport carries it whole).
 constexpr const char* kResultMagic = "shakerbench-sweep-result 1";
-
-class Writer {
-  public:
-    Writer() { out_ << std::hexfloat; }
-    Writer& key(const char* k) {
-        out_ << k;
-        return *this;
-    }
-    Writer& num(double v) {
-        out_ << ' ' << v;
-        return *this;
-    }
-    Writer& integer(long long v) {
-        out_ << ' ' << v;
-        return *this;
-    }
-    Writer& text(const std::string& t) {
-        out_ << '\t' << t;
-        return *this;
-    }
-    void end() { out_ << '\n'; }
-    std::string str() const { return out_.str(); }
-
-  private:
-    std::ostringstream out_;
-};
-
-class Reader {
-  public:
-    Reader(const std::string& text, std::string file) : in_(text), file_(std::move(file)) {}
-
-    /// Next line, which must start with the word `key`; its remaining words follow.
-    std::istringstream line(const std::string& key) {
-        std::string l;
-        if (!std::getline(in_, l)) {
-            fail("ends early, expected '" + key + "'");
-        }
-        ++line_;
-        // The whole word: "p" (a particle) must not take a "pairs" line.
-        if (l.rfind(key, 0) != 0 ||
-            (l.size() > key.size() && l[key.size()] != ' ' && l[key.size()] != '\t')) {
-            fail("expected '" + key + "'");
-        }
-        current_ = l;
-        return std::istringstream(l.substr(key.size()));
-    }
-    /// The text after the first tab of the current line (empty when there is none).
-    std::string text() const {
-        const auto tab = current_.find('\t');
-        return tab == std::string::npos ? std::string() : current_.substr(tab + 1);
-    }
-    /// Nothing may follow the values a line announces: more would be read as nothing.
-    void end(std::istringstream& words) {
-        std::string w;
-        if (words >> w) fail("'" + w + "' follows the values of '" + first_word() + "'");
-    }
-    double num(std::istringstream& words) {
-        std::string w;
-        if (!(words >> w)) {
-            fail("a number is missing");
-        }
-        char* end = nullptr;
-        const double v = std::strtod(w.c_str(), &end);
-        if (end == w.c_str() || *end != '\0') {
-            fail("'" + w + "' is not a number");
-        }
-        return v;
-    }
-    long long integer(std::istringstream& words) {
-        long long v = 0;
-        if (!(words >> v)) {
-            fail("a whole number is missing");
-        }
-        return v;
-    }
-    [[noreturn]] void fail(const std::string& message) const {
-        throw CheckpointError(file_, line_, message);
-    }
-    const std::string& current() const { return current_; }
-    /// Whatever follows the line just read.
-    /// Whether the next line starts with the word `key` (nothing is read).
-    bool next_is(const std::string& key) {
-        const auto at = in_.tellg();
-        std::string l;
-        const bool found =
-            static_cast<bool>(std::getline(in_, l)) && l.rfind(key, 0) == 0 &&
-            (l.size() == key.size() || l[key.size()] == ' ' || l[key.size()] == '\t');
-        in_.clear();
-        in_.seekg(at);
-        return found;
-    }
-    bool at_end() {
-        std::string rest;
-        return !std::getline(in_, rest);
-    }
-
-  private:
-    std::string first_word() const { return current_.substr(0, current_.find_first_of(" \t")); }
-
-    std::istringstream in_;
-    std::string file_;
-    std::string current_;
-    int line_ = 0;
-};
-
-void write_vector(Writer& w, const char* key, const Eigen::VectorXd& v) {
-    w.key(key).integer(v.size());
-    for (Eigen::Index i = 0; i < v.size(); ++i) {
-        w.num(v[i]);
-    }
-    w.end();
-}
-
-Eigen::VectorXd read_vector(Reader& r, const char* key) {
-    auto words = r.line(key);
-    const long long n = r.integer(words);
-    if (n < 0 || n > kMaxVectorSize) {
-        r.fail("implausible size " + std::to_string(n));
-    }
-    Eigen::VectorXd v(n);
-    for (long long i = 0; i < n; ++i) {
-        v[i] = r.num(words);
-    }
-    r.end(words);
-    return v;
-}
-
-}  // namespace
-
-namespace {
-
-void write_vector3(Writer& w, const Eigen::Vector3d& v) {
-    for (int k = 0; k < 3; ++k) w.num(v[k]);
-}
-
-Eigen::Vector3d read_vector3(Reader& r, std::istringstream& words) {
-    Eigen::Vector3d v;
-    for (int k = 0; k < 3; ++k) v[k] = r.num(words);
-    return v;
-}
-
-void write_dem_state(Writer& w, const dem::SolverState& s) {
-    w.key("enclosure");
-    write_vector3(w, s.enclosure.position_m);
-    for (int a = 0; a < 3; ++a) {
-        for (int b = 0; b < 3; ++b) w.num(s.enclosure.rotation(a, b));
-    }
-    write_vector3(w, s.enclosure.velocity_m_s);
-    write_vector3(w, s.enclosure.angular_velocity_rad_s);
-    w.end();
-    w.key("particles").integer(static_cast<long long>(s.positions_m.size())).end();
-    for (std::size_t i = 0; i < s.positions_m.size(); ++i) {
-        w.key("p");
-        write_vector3(w, s.positions_m[i]);
-        w.num(s.radii_m[i]);
-        write_vector3(w, s.velocities_m_s[i]);
-        write_vector3(w, s.angular_velocities_rad_s[i]);
-        w.end();
-    }
-    w.key("pairs").integer(static_cast<long long>(s.pair_histories.size())).end();
-    for (const auto& h : s.pair_histories) {
-        w.key("h").integer(h.i).integer(h.j);
-        write_vector3(w, h.history_m);
-        w.end();
-    }
-    w.key("walls").integer(static_cast<long long>(s.wall_histories.size())).end();
-    for (const auto& h : s.wall_histories) {
-        w.key("w").integer(h.particle).integer(h.wall);
-        write_vector3(w, h.history_m);
-        w.end();
-    }
-    w.key("locked").integer(static_cast<long long>(s.locked.size())).end();
-    for (const auto& l : s.locked) {
-        w.key("k").integer(l.id);
-        write_vector3(w, l.position_m);
-        w.end();
-    }
-    w.key("clock").integer(s.released ? 1 : 0).num(s.time_s).integer(s.step).end();
-    w.key("layers");
-    write_vector3(w, s.layers_up);
-    w.end();
-}
-
-std::uint32_t read_id(Reader& r, std::istringstream& words) {
-    const long long v = r.integer(words);
-    if (v < 0 || v > 0xffffffffLL) r.fail("implausible id");
-    return static_cast<std::uint32_t>(v);
-}
-
-long long read_count(Reader& r, const char* key) {
-    auto words = r.line(key);
-    const long long n = r.integer(words);
-    if (n < 0 || n > kMaxCount) r.fail("implausible count " + std::to_string(n));
-    r.end(words);
-    return n;
-}
-
-dem::SolverState read_dem_state(Reader& r) {
-    dem::SolverState s;
-    {
-        auto words = r.line("enclosure");
-        s.enclosure.position_m = read_vector3(r, words);
-        for (int a = 0; a < 3; ++a) {
-            for (int b = 0; b < 3; ++b) s.enclosure.rotation(a, b) = r.num(words);
-        }
-        s.enclosure.velocity_m_s = read_vector3(r, words);
-        s.enclosure.angular_velocity_rad_s = read_vector3(r, words);
-        r.end(words);
-    }
-    const long long particles = read_count(r, "particles");
-    for (long long i = 0; i < particles; ++i) {
-        auto words = r.line("p");
-        s.positions_m.push_back(read_vector3(r, words));
-        s.radii_m.push_back(r.num(words));
-        s.velocities_m_s.push_back(read_vector3(r, words));
-        s.angular_velocities_rad_s.push_back(read_vector3(r, words));
-        r.end(words);
-    }
-    const long long pairs = read_count(r, "pairs");
-    for (long long i = 0; i < pairs; ++i) {
-        auto words = r.line("h");
-        dem::PairHistory h;
-        h.i = read_id(r, words);
-        h.j = read_id(r, words);
-        h.history_m = read_vector3(r, words);
-        r.end(words);
-        s.pair_histories.push_back(h);
-    }
-    const long long walls = read_count(r, "walls");
-    for (long long i = 0; i < walls; ++i) {
-        auto words = r.line("w");
-        dem::WallHistory h;
-        h.particle = read_id(r, words);
-        h.wall = read_id(r, words);
-        h.history_m = read_vector3(r, words);
-        r.end(words);
-        s.wall_histories.push_back(h);
-    }
-    const long long locked = read_count(r, "locked");
-    for (long long i = 0; i < locked; ++i) {
-        auto words = r.line("k");
-        dem::LockedParticle l;
-        l.id = read_id(r, words);
-        l.position_m = read_vector3(r, words);
-        r.end(words);
-        s.locked.push_back(l);
-    }
-    {
-        auto words = r.line("clock");
-        const long long released = r.integer(words);
-        if (released != 0 && released != 1) r.fail("released must be 0 or 1");
-        s.released = released == 1;
-        s.time_s = r.num(words);
-        s.step = r.integer(words);
-        r.end(words);
-    }
-    {
-        auto words = r.line("layers");
-        s.layers_up = read_vector3(r, words);
-        r.end(words);
-    }
-    return s;
-}
 
 void write_rows(Writer& w, const std::vector<identification::PointRow>& rows) {
     w.key("rows").integer(static_cast<long long>(rows.size())).end();
@@ -458,46 +202,8 @@ std::string_view checkpoint_content(std::string_view text) {
     return text.substr(0, start);
 }
 
-namespace {
-
-/// The checksum first: a damaged file is reported as such, not as whatever its damage makes
-/// the first unreadable line look like.
-void check_sealed(const std::string& text, const std::string& file, std::string_view magic = kMagic,
-                  std::string_view magic_prefix = kMagicPrefix) {
-    if (text.rfind(magic_prefix, 0) != 0) {
-        throw CheckpointError(
-            file, 1,
-            "not a checkpoint: it does not start with '" + std::string(magic_prefix) + "'");
-    }
-    const std::string first = text.substr(0, text.find('\n'));
-    if (first != magic) {
-        throw CheckpointError(file, 1,
-                              "checkpoint format '" + first.substr(magic_prefix.size()) +
-                                  "', this shakerbench reads format '" +
-                                  std::string(magic.substr(magic_prefix.size())) + "'");
-    }
-    const std::string_view content = checkpoint_content(text);
-    if (content.size() == text.size()) {
-        const auto lines = std::count(text.begin(), text.end(), '\n') +
-                           (text.empty() || text.back() == '\n' ? 0 : 1);
-        throw CheckpointError(file, static_cast<int>(lines),
-                              "truncated: the file ends without its checksum line (cut short)");
-    }
-    const std::string expected = config::fnv1a_hex(content);
-    const std::string_view found =
-        std::string_view(text).substr(content.size() + kChecksumKey.size());
-    if (found.substr(0, found.size() - 1) != expected) {
-        throw CheckpointError(file, 0,
-                              "corrupted: its content does not match the checksum on its last "
-                              "line (the content gives " +
-                                  expected + ")");
-    }
-}
-
-}  // namespace
-
 SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& file_name) {
-    check_sealed(text, file_name);
+    check_sealed(text, file_name, kMagic, kMagicPrefix);
     Reader r(std::string(checkpoint_content(text)), file_name);
     SweepCheckpoint c;
     r.line(kMagic);

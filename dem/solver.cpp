@@ -1163,6 +1163,22 @@ void Solver::reset_energy() {
     ledger_.initial_total = energy().mechanical();
 }
 
+void Solver::continue_energy(const EnergyLedger& saved) {
+    const auto layers = static_cast<std::size_t>(options_.energy_layers);
+    if (saved.layer_dissipation.size() != layers || saved.layer_kinetic_time.size() != layers) {
+        throw std::invalid_argument("energy ledger of " +
+                                    std::to_string(saved.layer_dissipation.size()) +
+                                    " layers for a solver of " + std::to_string(layers));
+    }
+    ledger_.wall_work = saved.wall_work;
+    ledger_.normal_damping = saved.normal_damping;
+    ledger_.friction = saved.friction;
+    ledger_.rolling = saved.rolling;
+    ledger_.initial_total = saved.initial_total;
+    ledger_.layer_dissipation = saved.layer_dissipation;
+    ledger_.layer_kinetic_time = saved.layer_kinetic_time;
+}
+
 namespace {
 
 /// The enclosure-frame particles of world-frame arrays at pose e (the one formula of

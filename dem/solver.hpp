@@ -119,6 +119,12 @@ class Solver {
     double dissipated_j() const { return ledger_.dissipated(); }
     /// Restarts the cumulative works and the reference energy.
     void reset_energy();
+    /// Takes the cumulative works and the reference energy of `saved` (a ledger this run's
+    /// solver gave before it was saved), so that a solver restored from a SolverState keeps
+    /// its ledger: a run continued from a checkpoint adds the same steps' works to the same
+    /// sums as the uninterrupted one. Throws std::invalid_argument when the ledger's layers
+    /// are not options.energy_layers.
+    void continue_energy(const EnergyLedger& saved);
     /// Kinetic energy of the particles relative to the enclosure's rigid motion, translation
     /// and spin [J]: the bed's agitation, without the 1/2 m v_wall^2 every particle riding
     /// along would carry. O(particles).

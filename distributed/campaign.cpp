@@ -58,6 +58,17 @@ std::optional<std::string> from_optional_text(const std::string& reply) {
     return reply.substr(1);
 }
 
+/// What a progress belongs to, as a request's field, and back.
+std::string work_name(bench::Unfinished work) {
+    return work == bench::Unfinished::bed ? "bed" : "result";
+}
+
+bench::Unfinished work_of(const std::string& name) {
+    if (name == "bed") return bench::Unfinished::bed;
+    if (name == "result") return bench::Unfinished::result;
+    throw std::runtime_error("sweep request: no progress of kind '" + name + "'");
+}
+
 /// Rank 0's store as seen by a sweep on another rank.
 class RemoteStore : public bench::CheckpointStore {
   public:
@@ -77,14 +88,17 @@ class RemoteStore : public bench::CheckpointStore {
     void save_bed(const std::string& key, const std::string& text) override {
         link_.call(join({"save_bed", key, text}));
     }
-    std::optional<std::string> load_settling(const std::string& key) override {
-        return from_optional_text(link_.call(join({"load_settling", key})));
+    std::optional<std::string> load_progress(bench::Unfinished work,
+                                             const std::string& key) override {
+        return from_optional_text(link_.call(join({"load_progress", work_name(work), key})));
     }
-    void save_settling(const std::string& key, const std::string& text) override {
-        link_.call(join({"save_settling", key, text}));
+    void save_progress(bench::Unfinished work, const std::string& key,
+                       const std::string& text) override {
+        link_.call(join({"save_progress", work_name(work), key, text}));
     }
-    [[nodiscard]] std::string settling_name(const std::string& key) const override {
-        return link_.call(join({"settling_name", key}));
+    [[nodiscard]] std::string progress_name(bench::Unfinished work,
+                                            const std::string& key) const override {
+        return link_.call(join({"progress_name", work_name(work), key}));
     }
     std::optional<std::string> load_result(const std::string& key) override {
         return from_optional_text(link_.call(join({"load_result", key})));
@@ -139,17 +153,23 @@ std::string serve_sweep_request(const std::string& request, const bench::Campaig
     if (op == "load_checkpoint") return optional_text(store.load_checkpoint(split(request, 2)[1]));
     if (op == "load_bed") return optional_text(store.load_bed(split(request, 2)[1]));
     if (op == "load_result") return optional_text(store.load_result(split(request, 2)[1]));
-    if (op == "load_settling") return optional_text(store.load_settling(split(request, 2)[1]));
-    if (op == "settling_name") return store.settling_name(split(request, 2)[1]);
+    if (op == "load_progress") {
+        const auto f = split(request, 3);
+        return optional_text(store.load_progress(work_of(f[1]), f[2]));
+    }
+    if (op == "progress_name") {
+        const auto f = split(request, 3);
+        return store.progress_name(work_of(f[1]), f[2]);
+    }
     if (op == "save_checkpoint") {
         const auto f = split(request, 3);
         store.save_checkpoint(f[1], f[2]);
     } else if (op == "save_bed") {
         const auto f = split(request, 3);
         store.save_bed(f[1], f[2]);
-    } else if (op == "save_settling") {
-        const auto f = split(request, 3);
-        store.save_settling(f[1], f[2]);
+    } else if (op == "save_progress") {
+        const auto f = split(request, 4);
+        store.save_progress(work_of(f[1]), f[2], f[3]);
     } else if (op == "save_result") {
         const auto f = split(request, 3);
         store.save_result(f[1], f[2]);

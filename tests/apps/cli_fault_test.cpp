@@ -295,7 +295,8 @@ TEST(CliFaults, TwentyHardKillsAtRandomMomentsThenARunToTheEndGiveTheUninterrupt
 }
 
 /// `shakerbench characterize` of the golden bed (two levels, two frequencies, two fillings,
-/// short runs, one thread) into `out`: its arguments.
+/// short runs, one thread, each run's progress saved after every period) into `out`: its
+/// arguments.
 std::vector<std::string> characterization_arguments(const fs::path& out) {
     return {"characterize",
             std::string(SB_SOURCE_DIR) + "/tests/bench/golden/small-h0.toml",
@@ -313,19 +314,31 @@ std::vector<std::string> characterization_arguments(const fs::path& out) {
             "3",
             "--transient-periods",
             "1",
+            "--checkpoint-seconds",
+            "0",
             "-j",
             "1",
             "-q"};
 }
 
-std::size_t stored_runs(const fs::path& out) {
+/// Files in out/results whose name ends in `suffix`.
+std::size_t results_ending_in(const fs::path& out, const std::string& suffix) {
     std::error_code error;
     std::size_t count = 0;
     for (auto it = fs::directory_iterator(out / "results", error);
          !error && it != fs::directory_iterator(); it.increment(error)) {
-        count += it->path().extension() == ".txt" ? 1 : 0;
+        const std::string name = it->path().filename().string();
+        count += name.size() >= suffix.size() &&
+                         name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0
+                     ? 1
+                     : 0;
     }
     return count;
+}
+
+/// Runs finished and stored.
+std::size_t stored_runs(const fs::path& out) {
+    return results_ending_in(out, ".txt") - results_ending_in(out, ".progress.txt");
 }
 
 TEST(CliFaults, AKilledCharacterisationResumesItsFinishedRunsToTheUninterruptedTable) {
@@ -341,13 +354,15 @@ TEST(CliFaults, AKilledCharacterisationResumesItsFinishedRunsToTheUninterruptedT
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     ASSERT_EQ(stored_runs(whole), 8u);
 
-    // Killed at random moments of its second half until some runs, not all, are stored:
-    // what a kill leaves is resumed, never rerun, and the table is the uninterrupted one.
+    // Killed at random moments of its second half until some runs, not all, are stored and
+    // one run is cut short with its progress saved: what a kill leaves is resumed, never
+    // rerun, the run in progress continued, and the table is the uninterrupted one.
     const auto resumed = dir / "resumed";
     std::mt19937 random(23);
     std::uniform_real_distribution<double> fraction(0.3, 0.95);
     std::size_t kept = 0;
-    for (int k = 0; k < 10 && (kept == 0 || kept == 8); ++k) {
+    std::size_t in_progress = 0;
+    for (int k = 0; k < 10 && (kept == 0 || kept == 8 || in_progress == 0); ++k) {
         fs::remove_all(resumed);
         const pid_t child =
             start_in_background(characterization_arguments(resumed), dir / "kill.log");
@@ -356,9 +371,11 @@ TEST(CliFaults, AKilledCharacterisationResumesItsFinishedRunsToTheUninterruptedT
         kill(child, SIGKILL);
         waitpid(child, &status, 0);
         kept = stored_runs(resumed);
+        in_progress = results_ending_in(resumed, ".progress.txt");
     }
     ASSERT_GT(kept, 0u) << "no kill landed after the first run";
     ASSERT_LT(kept, 8u) << "no kill landed before the last run";
+    ASSERT_EQ(in_progress, 1u) << "no kill landed inside a run (one thread: one run at a time)";
     std::string command;
     for (const auto& a : characterization_arguments(resumed)) command += a + " ";
     const auto again = run(command);
@@ -367,6 +384,7 @@ TEST(CliFaults, AKilledCharacterisationResumesItsFinishedRunsToTheUninterruptedT
               std::string::npos)
         << again.output;
     EXPECT_EQ(characterization_without_command(resumed), characterization_without_command(whole));
+    EXPECT_EQ(results_ending_in(resumed, ".progress.txt"), 0u);  // dropped as each run ended
 }
 
 TEST(CliFaults, AFullDiskStopsTheRunNamingTheFileAndARunWithSpaceResumesToTheSameFiles) {

@@ -9,26 +9,13 @@
 #include "bench/checkpoint_store.hpp"
 #include "bench/sweep_checkpoint.hpp"
 #include "core/units.hpp"
+#include "killed_store.hpp"
 
 namespace sb::bench {
 namespace {
 
-struct Killed {};
-
-/// A store whose process "dies" (throws Killed) right after its `kill_at`-th save of a
-/// settling progress (never for 0), counting the saves.
-class KilledAfterSaves : public MemoryCheckpointStore {
-  public:
-    explicit KilledAfterSaves(int kill_at) : kill_at_(kill_at) {}
-    void save_settling(const std::string& key, const std::string& text) override {
-        MemoryCheckpointStore::save_settling(key, text);
-        if (++saves == kill_at_) throw Killed{};
-    }
-    int saves = 0;
-
-  private:
-    int kill_at_;
-};
+using testing::Killed;
+using testing::KilledAfterSaves;
 
 CampaignConfig poured_config() {
     return load_campaign_config_text(
@@ -50,8 +37,8 @@ TEST(SettledBed, APourKilledWhileSettlingResumesToTheBedOfAnUninterruptedOne) {
     counting.open("hash", false);
     const dem::ParticleSet saved =
         settled_bed(damper, kStiffness, upright, kGravity, 7, &counting, "bed", nullptr, 0.0);
-    EXPECT_EQ(saved.positions_m, plain.positions_m);  // saving changes nothing
-    EXPECT_FALSE(counting.load_settling("bed"));      // dropped once the bed is saved
+    EXPECT_EQ(saved.positions_m, plain.positions_m);               // saving changes nothing
+    EXPECT_FALSE(counting.load_progress(Unfinished::bed, "bed"));  // dropped once the bed is saved
     ASSERT_GT(counting.saves, 3);
 
     for (const int kill_at : {1, counting.saves / 2, counting.saves - 1}) {
@@ -62,7 +49,7 @@ TEST(SettledBed, APourKilledWhileSettlingResumesToTheBedOfAnUninterruptedOne) {
         EXPECT_THROW(
             settled_bed(damper, kStiffness, upright, kGravity, 7, &store, "bed", nullptr, 0.0),
             Killed);
-        ASSERT_TRUE(store.load_settling("bed"));
+        ASSERT_TRUE(store.load_progress(Unfinished::bed, "bed"));
         ASSERT_FALSE(store.load_bed("bed"));
         bool settled_here = false;
         const dem::ParticleSet resumed = settled_bed(damper, kStiffness, upright, kGravity, 7,
@@ -72,7 +59,7 @@ TEST(SettledBed, APourKilledWhileSettlingResumesToTheBedOfAnUninterruptedOne) {
         EXPECT_EQ(resumed.velocities_m_s, plain.velocities_m_s);
         EXPECT_EQ(resumed.angular_velocities_rad_s, plain.angular_velocities_rad_s);
         EXPECT_EQ(store.saves, counting.saves);  // the resumed pour saved only what was left
-        EXPECT_FALSE(store.load_settling("bed"));
+        EXPECT_FALSE(store.load_progress(Unfinished::bed, "bed"));
     }
 }
 
@@ -85,18 +72,18 @@ TEST(SettledBed, ADamagedOrForeignSettlingProgressIsRefusedNamingIt) {
     EXPECT_THROW(
         settled_bed(damper, kStiffness, upright, kGravity, 7, &killed, "bed", nullptr, 0.0),
         Killed);
-    const std::string progress = *killed.load_settling("bed");
+    const std::string progress = *killed.load_progress(Unfinished::bed, "bed");
 
     const auto refused = [&](const std::string& text, std::uint64_t seed, const char* why) {
         MemoryCheckpointStore store;
         store.open("hash", false);
-        store.save_settling("bed", text);
+        store.save_progress(Unfinished::bed, "bed", text);
         try {
             (void)settled_bed(damper, kStiffness, upright, kGravity, seed, &store, "bed", nullptr,
                               0.0);
             ADD_FAILURE() << why << ": resumed";
         } catch (const CheckpointError& e) {
-            EXPECT_EQ(e.file(), store.settling_name("bed")) << why;
+            EXPECT_EQ(e.file(), store.progress_name(Unfinished::bed, "bed")) << why;
         }
     };
     refused(progress.substr(0, progress.size() / 2), 7, "cut short");

@@ -145,6 +145,39 @@ TEST(SolverState, RestoredAtTheSamePoseContinuesBitwiseWithTheHistorySprings) {
     EXPECT_EQ(a.layers().up(), b.layers().up());
 }
 
+TEST(SolverState, ARestoredSolverGivenItsLedgerContinuesTheEnergyLedgerBitwise) {
+    // The state carries the particles, not the ledger's sums: a restored solver starts them
+    // afresh, unless it continues the saved ledger (a characterisation run resumed from its
+    // progress needs the sums, not only their changes, to add up to the same numbers).
+    const SolverOptions o = bed_options(TangentialLaw::coulomb_spring);
+    ASSERT_TRUE(o.track_energy);
+    Solver a(o, poured_bed(), shaking(0.0));
+    shake(a, 0, kCapture);
+    const SolverState s = a.state();
+    const EnergyLedger saved = a.energy();
+    ASSERT_GT(saved.wall_work, 0.0);
+    ASSERT_GT(saved.dissipated(), 0.0);
+    Solver b(o, s, s.enclosure);
+    EXPECT_EQ(b.energy().wall_work, 0.0);  // afresh
+    b.continue_energy(saved);
+    shake(a, kCapture, kEnd);
+    shake(b, kCapture, kEnd);
+    const EnergyLedger ea = a.energy();
+    const EnergyLedger eb = b.energy();
+    EXPECT_EQ(eb.wall_work, ea.wall_work);
+    EXPECT_EQ(eb.normal_damping, ea.normal_damping);
+    EXPECT_EQ(eb.friction, ea.friction);
+    EXPECT_EQ(eb.rolling, ea.rolling);
+    EXPECT_EQ(eb.initial_total, ea.initial_total);
+    EXPECT_EQ(eb.layer_dissipation, ea.layer_dissipation);
+    EXPECT_EQ(eb.layer_kinetic_time, ea.layer_kinetic_time);
+    EXPECT_EQ(eb.mechanical(), ea.mechanical());
+    // A ledger of other layers belongs to another solver.
+    EnergyLedger other = saved;
+    other.layer_dissipation.push_back(0.0);
+    EXPECT_THROW(b.continue_energy(other), std::invalid_argument);
+}
+
 TEST(SolverState, WithoutItsHistorySpringsTheRestoredBedRunsDifferently) {
     // The same restore with the springs dropped (all else exact), as a rebuild from the
     // enclosure-frame particles alone would do: the contacts restart without static friction
