@@ -110,7 +110,7 @@ TEST(Characterization, ALockedBedIsARigidMass) {
     }
 }
 
-TEST(Characterization, TheLedgersPowerIsTheLossOfTheApparentMass) {
+TEST(Characterization, TheWallsPowerIsTheLossOfTheApparentMass) {
     // A loose bed of 30 spheres at 2 g: whatever its motion, the walls' work on it per period
     // is -<Q v>, and v is a pure sine, so P = -(A^2 / 2w) Im M (docs/characterisation.md).
     EnclosureSetup setup = locked_bed(Eigen::Vector3d(0.0, 0.0, -kStandardGravity));
@@ -121,7 +121,7 @@ TEST(Characterization, TheLedgersPowerIsTheLossOfTheApparentMass) {
     const double from_mass = -point.apparent_mass_kg.imag() * drive.acceleration_m_s2 *
                              drive.acceleration_m_s2 / (2.0 * w);
     EXPECT_GT(point.power_w, 0.0);
-    // 2 %: the ledger takes each step's wall velocity, the fundamental the step's start.
+    // 2 %: the work takes each step's wall velocity, the fundamental the step's start.
     EXPECT_NEAR(point.power_w, from_mass, 0.02 * point.power_w);
 }
 
