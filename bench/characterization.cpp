@@ -178,8 +178,7 @@ ApparentMassPoint measure_apparent_mass(const EnclosureSetup& setup, const Harmo
 
     dem::SolverOptions options = setup.options;
     // The walls' work comes from the load on the point (below), O(1) per step; the solver's
-    // per-contact ledger, which costs about a third of a large bed's step, only to say where
-    // the energy goes.
+    // per-contact ledger only to say where the energy goes.
     options.track_energy = setup.bed_energy;
     DemDamper damper(options, setup.mount_rotation, setup.offset_m, setup.bed,
                      Eigen::Vector3d::Zero());
