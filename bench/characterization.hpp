@@ -149,6 +149,11 @@ struct CharacterizeOptions {
     int seeds = 3;  ///< fillings: campaign.seed, campaign.seed + 1, ...
     /// > 0: measure where the energy goes (BedEnergy) with this many horizontal layers.
     int energy_layers = 0;
+    /// With energy_layers = 0 and a store: a run the store holds with this many energy layers
+    /// serves too, its energy left out (the ledger does not touch the motion and the power
+    /// comes from the load on the point, so its other numbers are the run's; runs stored
+    /// before the power came from the load differ in the power's last digits). 0: none.
+    int stored_energy_layers = 0;
     bool rotation = true;  ///< the point turns with the driven mode (else translation only)
     SteadyStateOptions steady;
     int threads = 0;  ///< runs in parallel; 0: OpenMP's default

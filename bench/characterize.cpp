@@ -70,7 +70,10 @@ struct CharacterizationGrid {
         std::size_t bed = 0;
         double frequency_hz = 0.0;
         ApparentMassPoint result;
-        std::string key;      ///< the store's key
+        std::string key;  ///< the store's key
+        /// The key of the same run measured with CharacterizeOptions::stored_energy_layers
+        /// (empty when none): a stored one serves, its energy left out.
+        std::string key_with_energy;
         bool stored = false;  ///< read back from the store
         /// Where an interrupted run stands, read back from the store (released once the run
         /// has continued it).
@@ -113,23 +116,32 @@ void assign_keys(CharacterizationGrid& grid, const CharacterizeOptions& options)
         bed.same_as = first_bed.emplace(bed.key, b).first->second;
     }
     const SteadyStateOptions& st = options.steady;
-    std::ostringstream common;
-    common << st.transient_periods << ' ' << st.window_periods << ' ' << exact_text(st.tolerance)
-           << ' ' << st.max_periods << ' ' << exact_text(st.energy_tolerance) << ' '
-           << options.energy_layers << ' ' << (options.rotation ? 1 : 0);
+    const auto common = [&](int energy_layers) {
+        std::ostringstream out;
+        out << st.transient_periods << ' ' << st.window_periods << ' ' << exact_text(st.tolerance)
+            << ' ' << st.max_periods << ' ' << exact_text(st.energy_tolerance) << ' '
+            << energy_layers << ' ' << (options.rotation ? 1 : 0);
+        return out.str();
+    };
+    const bool other_energy = options.energy_layers == 0 && options.stored_energy_layers > 0;
     for (auto& run : grid.runs) {
         const auto& bed = grid.beds[run.bed];
         const Eigen::Vector3d& turn =
             grid.rotations[bed.arrangement * grid.dampers.size() + grid.damper_index(bed.damper)];
         std::ostringstream numbers;
-        numbers << common.str() << ' ' << exact_text(bed.level_g) << ' '
-                << exact_text(run.frequency_hz) << ' ' << exact_text(bed.contact.stiffness) << ' '
-                << exact_text(step_limit_s(grid, bed)) << ' ' << exact_text(turn.x()) << ' '
-                << exact_text(turn.y()) << ' ' << exact_text(turn.z()) << ' ' << bed.seed;
-        run.key = grid.plan.arrangements[bed.arrangement].arrangement.name + "_" +
-                  bed.damper->name + "_" + significant_text(bed.level_g, 6) + "g_" +
-                  significant_text(run.frequency_hz, 6) + "Hz_seed" + std::to_string(bed.seed) +
-                  "_" + config::fnv1a_hex(numbers.str());
+        numbers << ' ' << exact_text(bed.level_g) << ' ' << exact_text(run.frequency_hz) << ' '
+                << exact_text(bed.contact.stiffness) << ' ' << exact_text(step_limit_s(grid, bed))
+                << ' ' << exact_text(turn.x()) << ' ' << exact_text(turn.y()) << ' '
+                << exact_text(turn.z()) << ' ' << bed.seed;
+        const std::string where = grid.plan.arrangements[bed.arrangement].arrangement.name + "_" +
+                                  bed.damper->name + "_" + significant_text(bed.level_g, 6) + "g_" +
+                                  significant_text(run.frequency_hz, 6) + "Hz_seed" +
+                                  std::to_string(bed.seed) + "_";
+        run.key = where + config::fnv1a_hex(common(options.energy_layers) + numbers.str());
+        if (other_energy) {
+            run.key_with_energy =
+                where + config::fnv1a_hex(common(options.stored_energy_layers) + numbers.str());
+        }
     }
 }
 
@@ -250,7 +262,7 @@ CharacterizationGrid plan_grid(const CampaignConfig& config, const CharacterizeO
     }
     for (std::size_t b = 0; b < beds.size(); ++b) {
         for (double f : grids[beds[b].arrangement]) {
-            grid_plan.runs.push_back({b, f, {}, {}, false, std::nullopt});
+            grid_plan.runs.push_back({b, f, {}, {}, {}, false, std::nullopt});
         }
     }
     assign_keys(grid_plan, options);
@@ -573,7 +585,12 @@ void resume_from_store(const CampaignConfig& config, const CharacterizeOptions& 
     store->open(config_hash(config), options.restart);
     std::vector<config::ConfigError> problems;
     for (auto& run : grid.runs) {
-        const std::optional<std::string> text = store->load_result(run.key);
+        std::string key = run.key;
+        std::optional<std::string> text = store->load_result(key);
+        if (!text && !run.key_with_energy.empty()) {
+            key = run.key_with_energy;
+            text = store->load_result(key);
+        }
         if (!text) {
             read_progress(*store, run, problems);
             continue;
@@ -585,13 +602,14 @@ void resume_from_store(const CampaignConfig& config, const CharacterizeOptions& 
         } else {
             try {
                 run.result = parse_point(content);
+                if (options.energy_layers == 0) run.result.energy.reset();  // not asked for
                 run.stored = true;
             } catch (const std::exception& e) {
                 damage = e.what();
             }
         }
         if (!damage.empty()) {
-            problems.push_back({store->result_name(run.key), 0, 0, "(stored result)", "", damage,
+            problems.push_back({store->result_name(key), 0, 0, "(stored result)", "", damage,
                                 "cannot be resumed: delete it to run that point again, or run "
                                 "again with --restart to discard every stored result"});
         }

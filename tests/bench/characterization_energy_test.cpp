@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "bench/campaign_config.hpp"
+#include "bench/checkpoint_store.hpp"
 #include "core/units.hpp"
 #include "tests/support/enclosure_setups.hpp"
 #include "tests/support/impact_damper.hpp"
@@ -184,6 +185,39 @@ TEST(CharacterizationEnergy, ALooseBedsLayersAddUpToItsMechanismsAndItsFilesHold
     const CharacterizeResult plain = characterize(config, short_runs(0));
     EXPECT_FALSE(plain.runs_by_filling.front().result.energy.has_value());
     EXPECT_THROW(bed_energy_csv_text(plain), std::invalid_argument);
+}
+
+TEST(CharacterizationEnergy, ARunStoredWithItsEnergyServesOneWithoutAndGivesItsNumbers) {
+    // The ledger does not touch the motion, and the power comes from the load on the point:
+    // a run without the energy gives the numbers the same run with it gives, so a run stored
+    // with the energy (the config's output.energy) serves one asked without it (--no-energy),
+    // and nothing is simulated again.
+    const auto config = small_bed();
+    const CharacterizeResult without = characterize(config, short_runs(0));
+    MemoryCheckpointStore store;
+    CharacterizeOptions with_energy = short_runs(3);
+    with_energy.store = &store;
+    const CharacterizeResult with = characterize(config, with_energy);
+    ASSERT_TRUE(with.runs_by_filling.front().result.energy.has_value());
+    EXPECT_EQ(characterization_csv_text(with.table), characterization_csv_text(without.table));
+
+    CharacterizeOptions served = short_runs(0);
+    served.store = &store;
+    served.stored_energy_layers = 3;
+    const CharacterizeResult taken = characterize(config, served);
+    EXPECT_EQ(taken.resumed_runs, 2);
+    EXPECT_FALSE(taken.runs_by_filling.front().result.energy.has_value());
+    EXPECT_EQ(characterization_csv_text(taken.table), characterization_csv_text(without.table));
+    // Stored with other layers, or not said: another run.
+    served.stored_energy_layers = 4;
+    EXPECT_EQ(characterize(config, served).resumed_runs, 0);
+    CharacterizeOptions fresh = short_runs(0);
+    MemoryCheckpointStore other;
+    CharacterizeOptions seeded = short_runs(3);
+    seeded.store = &other;
+    (void)characterize(config, seeded);
+    fresh.store = &other;
+    EXPECT_EQ(characterize(config, fresh).resumed_runs, 0);
 }
 
 TEST(CharacterizationEnergy, ARunsEnergyReadsBackExactlyFromAnotherProcess) {
