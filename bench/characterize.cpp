@@ -420,8 +420,7 @@ void report(const CharacterizeOptions& options, const CharacterizationGrid& grid
 std::string sealed(const std::string& point) { return seal_checkpoint(point + '\n'); }
 
 /// Where run `run` saves its progress (every options.checkpoint_interval_s of wall time) and
-/// the progress it continues; none without a store. A progress that does not fit the run
-/// throws CheckpointError naming it.
+/// the progress it continues; none without a store.
 RunCheckpoints checkpoints_of(const CharacterizeOptions& options,
                               const CharacterizationGrid::Run& run) {
     RunCheckpoints checkpoints;
