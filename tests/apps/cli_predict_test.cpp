@@ -143,6 +143,36 @@ TEST(CliPredict, CharacterizeRefusesALevelBelowZeroALevelTwiceAndAnUnknownRotati
     EXPECT_FALSE(fs::exists(dir / "c"));
     const auto rotation = run("characterize " + config + " --rotation sideways");
     EXPECT_EQ(rotation.exit_code, 2) << rotation.output;
+    const auto both = run("characterize " + config + " --energy --no-energy");
+    EXPECT_EQ(both.exit_code, 2) << both.output;
+    EXPECT_NE(both.output.find("--energy excludes --no-energy"), std::string::npos) << both.output;
+}
+
+TEST(CliPredict, CharacterizeWithoutTheEnergyTakesTheRunsStoredWithIt) {
+    // The golden bed with output.energy on: the energy files, then --no-energy in the same
+    // directory takes every run from the store (their numbers are the same) and writes the
+    // same table without the energy files.
+    const auto dir = temp_dir("characterize-energy-" + std::to_string(getpid()));
+    const std::string common = std::string(SB_SOURCE_DIR) +
+                               "/tests/bench/golden/small-h0.toml --set output.energy=true"
+                               " --levels-g 1 --frequency-count 1 --seeds 1 --max-periods 7"
+                               " --window-periods 3 --transient-periods 1 -j 1 -q --out ";
+    const auto with = run("characterize " + common + (dir / "with").string());
+    ASSERT_EQ(with.exit_code, 0) << with.output;
+    ASSERT_TRUE(fs::exists(dir / "with" / "characterization_energy.csv"));
+    fs::remove(dir / "with" / "characterization_energy.csv");
+    fs::remove(dir / "with" / "energy_spectrum.csv");
+    const std::string table = file_text(dir / "with" / "characterization.csv");
+    const auto without = run("characterize " + common + (dir / "with").string() + " --no-energy");
+    ASSERT_EQ(without.exit_code, 0) << without.output;
+    EXPECT_NE(without.output.find("1 of them taken from the store"), std::string::npos)
+        << without.output;
+    EXPECT_FALSE(fs::exists(dir / "with" / "characterization_energy.csv"));
+    EXPECT_FALSE(fs::exists(dir / "with" / "energy_spectrum.csv"));
+    const auto rows = [](const std::string& text) {  // the table without its header's command
+        return text.substr(text.find("\ndamper,"));
+    };
+    EXPECT_EQ(rows(file_text(dir / "with" / "characterization.csv")), rows(table));
 }
 
 }  // namespace
