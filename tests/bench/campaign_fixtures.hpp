@@ -31,6 +31,16 @@ inline std::string paper000_h0_with(const std::vector<std::pair<std::string, std
     return text;
 }
 
+/// The H-0 damper with 30 spheres at the levels of `levels_line` (`levels_g = [...]`).
+inline CampaignConfig thirty_sphere_h0(const std::string& levels_line, const std::string& name) {
+    const std::string text = paper000_h0_with({
+        {"count = 120", "count = 30"},
+        {"max_overlap_fraction", "max_overlap_fraction = 0.05"},
+        {"levels_g", levels_line},
+    });
+    return load_campaign_config_text(text, name);
+}
+
 /// The paper-000 bench with its particles as a rigid mass (a linear structure) at 1 and 3 g,
 /// `count` frequencies over ±4 % of the mode. A catalogue physics switched on starts each
 /// point from the linear steady state without it, a transient that the lightly damped mode

@@ -155,16 +155,8 @@ TEST(CharacterizationProgress, ADamagedProgressTextIsRefusedNamingTheFileAndTheL
     refused(other, "another format");
 }
 
-/// The 30-sphere H-0 bed at 2 g, one filling, two frequencies: two short runs.
-CampaignConfig two_runs_config() {
-    const std::string text = test::paper000_h0_with({
-        {"count = 120", "count = 30"},
-        {"max_overlap_fraction", "max_overlap_fraction = 0.05"},
-        {"levels_g", "levels_g = [2.0]"},
-    });
-    return load_campaign_config_text(text, "progress.toml");
-}
-
+/// The 30-sphere H-0 bed at 2 g (test::thirty_sphere_h0), one filling, two frequencies: two
+/// short runs, each saving its progress after every period.
 CharacterizeOptions saving_after_every_period() {
     CharacterizeOptions options = sb::test::short_characterization(2, 3, 8);
     options.seeds = 1;
@@ -173,7 +165,7 @@ CharacterizeOptions saving_after_every_period() {
 }
 
 TEST(CharacterizationProgress, AKilledCharacterisationContinuesItsRunInProgress) {
-    const auto config = two_runs_config();
+    const auto config = test::thirty_sphere_h0("levels_g = [2.0]", "progress.toml");
     CharacterizeOptions options = saving_after_every_period();
     const auto whole = characterize(config, options);  // no store: nothing saved
     ASSERT_EQ(whole.runs, 2);
@@ -220,7 +212,7 @@ class KeyedStore : public MemoryCheckpointStore {
 };
 
 TEST(CharacterizationProgress, ADamagedOrForeignProgressInTheStoreIsRefusedNamingIt) {
-    const auto config = two_runs_config();
+    const auto config = test::thirty_sphere_h0("levels_g = [2.0]", "progress.toml");
     CharacterizeOptions options = saving_after_every_period();
     KeyedStore store;
     options.store = &store;

@@ -34,6 +34,7 @@ using sb::test::locked_bed;
 using sb::test::plastic_particle_apparent_mass;
 using sb::test::single_particle;
 using sb::test::sphere_mass_kg;
+using test::thirty_sphere_h0;
 
 TEST(Characterization, APlasticParticleInAGapHasTheApparentMassOfItsImpactPattern) {
     constexpr double kGap = 5e-3;
@@ -191,16 +192,6 @@ TEST(Characterization, ACantileverTipTurnsAsItsFirstModeSays) {
     EXPECT_NEAR(psi.y(), exact, 0.01 * std::abs(exact));
     EXPECT_NEAR(psi.x(), 0.0, 1e-6 * std::abs(exact));
     EXPECT_NEAR(psi.z(), 0.0, 1e-6 * std::abs(exact));
-}
-
-/// The H-0 damper with 30 spheres at the levels of `levels_line` (`levels_g = [...]`).
-CampaignConfig thirty_sphere_h0(const std::string& levels_line, const std::string& name) {
-    const std::string text = test::paper000_h0_with({
-        {"count = 120", "count = 30"},
-        {"max_overlap_fraction", "max_overlap_fraction = 0.05"},
-        {"levels_g", levels_line},
-    });
-    return load_campaign_config_text(text, name);
 }
 
 TEST(Characterization, TheTableIsTheSameOnOneAndTwoThreads) {
