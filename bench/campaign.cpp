@@ -141,8 +141,11 @@ CampaignResult run_campaign(const CampaignConfig& config, const CampaignContext&
 
     CampaignProgress progress(context.progress, plan.points());
     if (context.progress) {
+        const RandomSpec& random = config.campaign.random;
         context.progress("campaign " + config.name + ": " + std::to_string(plan.tasks.size()) +
-                         " sweeps, " + std::to_string(plan.points()) + " points");
+                         (random.on() ? " random tests of " + significant_text(random.low_hz) +
+                                            "-" + significant_text(random.high_hz) + " Hz"
+                                      : " sweeps, " + std::to_string(plan.points()) + " points"));
     }
     ThreadExecutor threaded(context.threads);
     SweepExecutor& executor = context.executor != nullptr ? *context.executor : threaded;

@@ -228,7 +228,8 @@ CampaignPlan plan_campaign(const CampaignConfig& config, const Selection& select
             t.seed = campaign.seed + static_cast<std::uint64_t>(filling);
             t.stiffness_level_g =
                 campaign.drive.fixed() ? largest_g : std::max(largest_g, s.level_g);
-            t.refine = s.frequencies_hz.empty() && !campaign.transient.on();
+            t.refine =
+                s.frequencies_hz.empty() && !campaign.transient.on() && !campaign.random.on();
             t.key = sweep_key(config, s.arrangement, s.level_g, s.frequencies_hz);
             if (filling > 0) t.key += "_s" + std::to_string(filling);
             plan.tasks.push_back(std::move(t));

@@ -231,6 +231,26 @@ struct TransientSpec {
     [[nodiscard]] bool on() const { return duration_s > 0.0; }
 };
 
+/// A random test instead of a stepped sine (paper 003, Figs. 6-8): each sweep drives the
+/// specimen with band-limited Gaussian noise, holds the RMS of the control channel in the band
+/// (or drives a fixed RMS force), and estimates H1 by Welch's averaged spectra
+/// (docs/campaign.md, random tests).
+struct RandomSpec {
+    double low_hz = 0.0;           ///< lower edge of the drive and analysis band [Hz]
+    double high_hz = 0.0;          ///< upper edge; 0: no random test [Hz]
+    double resolution_hz = 0.125;  ///< line spacing; a segment lasts 1 / resolution [s]
+    int averages = 16;             ///< Hann segments averaged, overlapping by half [-]
+    int level_blocks = 8;          ///< most segments run to bring the level in [-]
+    double tolerance = 0.05;       ///< relative RMS error at which the level holds [-]
+    int checkpoint_segments = 4;   ///< half segments of the averaging between checkpoints [-]
+
+    [[nodiscard]] bool on() const { return high_hz > 0.0; }
+    /// Segments run in all at most: the level's, then the acquisition's half-overlapping ones.
+    [[nodiscard]] double longest_run_s() const {
+        return (level_blocks + 0.5 * (averages + 1)) / resolution_hz;
+    }
+};
+
 /// What a campaign writes besides points.csv and damping.csv.
 struct OutputSpec {
     bool series = false;  ///< time histories of the steady windows in series/
@@ -301,6 +321,7 @@ struct CampaignSpec {
     std::vector<std::string> response_points;  ///< other recorded points (acceleration)
     std::vector<ChannelSpec> channels;         ///< further channels, any direction and quantity
     TransientSpec transient;                   ///< a run from rest instead of stepped sines
+    RandomSpec random;                         ///< a random test instead of stepped sines
     std::vector<DamperSpec> dampers;
     /// The controller; without an initial amplitude every sweep starts from the linear model.
     control::ControllerOptions controller = [] {

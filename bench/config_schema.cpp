@@ -133,6 +133,61 @@ std::shared_ptr<const config::Table> transient_table() {
     return t.build();
 }
 
+std::shared_ptr<const config::Table> random_table() {
+    TableBuilder<RandomSpec> t(
+        "a random test",
+        "Instead of stepped sines, each sweep (arrangement x level) drives the specimen with "
+        "band-limited Gaussian noise between `low_hz` and `high_hz`, as a random test's "
+        "analyser does: the drive's RMS is adjusted segment by segment until the control "
+        "channel's RMS in the band holds `campaign.levels_g` (a fixed drive: "
+        "`campaign.drive.amplitudes` are RMS forces), then `averages` Hann-windowed segments "
+        "overlapping by half give H1 = G_xy / G_xx and the coherence at every line of the "
+        "band. points.csv then holds one row per line (status `random`, the reference's "
+        "amplitude 1, each channel's H1) and damping.csv the estimators on it. Needs a force "
+        "excitation without `[physics.shaker]`; `[campaign.frequencies]` is not used.");
+    t.number(
+         "low_hz", [](RandomSpec & s) -> auto& { return s.low_hz; },
+         "lower edge of the drive and analysis band")
+        .unit("Hz")
+        .bound(Bound::non_negative());
+    t.number(
+         "high_hz", [](RandomSpec & s) -> auto& { return s.high_hz; },
+         "upper edge of the band; 0: a stepped-sine campaign")
+        .unit("Hz")
+        .bound(Bound::non_negative());
+    t.number(
+         "resolution_hz", [](RandomSpec & s) -> auto& { return s.resolution_hz; },
+         "line spacing of the spectra")
+        .unit("Hz")
+        .bound(Bound::positive())
+        .doc(
+            "line spacing of the spectra; each segment lasts 1 / resolution_hz. A twentieth of "
+            "the half-power bandwidth 2 zeta f_n or finer keeps the damping identified within "
+            "about 1 % (docs/campaign.md, random tests)");
+    t.integer(
+         "averages", [](RandomSpec & s) -> auto& { return s.averages; },
+         "Hann-windowed segments averaged, overlapping by half")
+        .bound(Bound::at_least(1));
+    t.integer(
+         "level_blocks", [](RandomSpec & s) -> auto& { return s.level_blocks; },
+         "most segments run to bring the level in before the averaging")
+        .bound(Bound::at_least(1))
+        .doc(
+            "most segments run to bring the level in before the averaging (the first also lets "
+            "the start from rest die out); a level still off by more than `tolerance` over "
+            "the averaging marks the sweep's lines `closest`");
+    t.number(
+         "tolerance", [](RandomSpec & s) -> auto& { return s.tolerance; },
+         "relative error of the band RMS at which the level holds")
+        .bound(Bound::positive());
+    t.integer(
+         "checkpoint_segments", [](RandomSpec & s) -> auto& { return s.checkpoint_segments; },
+         "half segments of the averaging between checkpoints (an interrupted test resumes "
+         "from the last; every level segment is one)")
+        .bound(Bound::at_least(1));
+    return t.build();
+}
+
 std::shared_ptr<const config::Table> channel_table() {
     TableBuilder<ChannelSpec> t(
         "a further recorded channel",
@@ -243,6 +298,8 @@ std::shared_ptr<const config::Table> campaign_table() {
     t.table(
         "transient", [](CampaignConfig & c) -> auto& { return c.campaign.transient; },
         transient_table());
+    t.table(
+        "random", [](CampaignConfig & c) -> auto& { return c.campaign.random; }, random_table());
     return t.build();
 }
 
@@ -717,6 +774,42 @@ void check_channels(const CampaignConfig& config, const Known& known, Violations
     }
 }
 
+/// [campaign.random]: a band inside what the drive can make, on a force excitation that
+/// takes any waveform, not together with a run from rest.
+void check_random(const CampaignConfig& config, Violations& out) {
+    const RandomSpec& random = config.campaign.random;
+    if (!random.on()) return;
+    const auto number = [](double v) { return config::number_text(v); };
+    if (!(random.low_hz > 0.0) || !(random.low_hz < random.high_hz)) {
+        out.push_back(
+            {"campaign.random.low_hz", number(random.low_hz),
+             "must be > 0 and below campaign.random.high_hz (" + number(random.high_hz) + ")", ""});
+    } else if ((random.high_hz - random.low_hz) / random.resolution_hz < 8.0) {
+        out.push_back({"campaign.random.resolution_hz", number(random.resolution_hz),
+                       "must give at least 8 lines in the band " + number(random.low_hz) + "-" +
+                           number(random.high_hz) + " Hz",
+                       ""});
+    }
+    if (config.structure.excitation.kind != structure::ExcitationSpec::Kind::force) {
+        out.push_back({"campaign.random.high_hz", number(random.high_hz),
+                       "needs a force excitation (structure.excitation.kind = \"force\"): a "
+                       "base's random displacement is not integrated",
+                       ""});
+    }
+    if (config.physics.shaker.on()) {
+        out.push_back({"campaign.random.high_hz", number(random.high_hz),
+                       "cannot drive through [physics.shaker]: its coil is modelled in the "
+                       "steady state of one frequency",
+                       ""});
+    }
+    if (config.campaign.transient.on()) {
+        out.push_back({"campaign.random.high_hz", number(random.high_hz),
+                       "cannot go with campaign.transient.duration_s > 0: a sweep is one or the "
+                       "other",
+                       ""});
+    }
+}
+
 /// Every point, mass and arrangement the campaign names must exist.
 Violations check_references(const CampaignConfig& config) {
     Violations out;
@@ -747,6 +840,7 @@ Violations check_references(const CampaignConfig& config) {
         out.push_back({"campaign.transient.frequency_hz", "absent",
                        "is required with campaign.transient.duration_s > 0", ""});
     }
+    check_random(config, out);
     for (const auto& name : config.campaign.arrangement_selection) {
         const auto& defined = config.campaign.arrangements;
         if (std::none_of(defined.begin(), defined.end(),

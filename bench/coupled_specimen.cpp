@@ -165,7 +165,16 @@ void CoupledSpecimen::set_frequency(double frequency_hz) {
 }
 
 double CoupledSpecimen::excitation_value(double amplitude, double time_s) const {
+    if (waveform_) return amplitude * waveform_(waveform_offset_s_ + time_s);
     return amplitude * std::sin(hz_to_rad_s(frequency_hz_) * time_s);
+}
+
+void CoupledSpecimen::set_waveform(std::function<double(double)> waveform, double offset_s) {
+    if (waveform && (shaker_ || excitation_.kind != structure::ExcitationSpec::Kind::force)) {
+        throw std::logic_error("coupled specimen: a waveform drives a force excitation only");
+    }
+    waveform_ = std::move(waveform);
+    waveform_offset_s_ = offset_s;
 }
 
 double CoupledSpecimen::drive_force(double amplitude, double time_s) const {

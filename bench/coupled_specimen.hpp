@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <complex>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -56,6 +57,13 @@ class CoupledSpecimen {
     /// suspension are the ShakerCoil among the attachments, its armature's mass the model's.
     /// Before set_frequency().
     void drive_through(const ShakerSpec& shaker);
+
+    /// Drives a force excitation with `waveform(offset_s + t)` times the amplitude instead of
+    /// sin(2 pi f t), t the point clock (which restore() sets back to 0, so a run that goes on
+    /// across a restore passes its time so far as the offset): a random test's noise. An
+    /// empty function goes back to the sine. Not for base excitation or a shaker (the config
+    /// refuses them: bench/config_schema.cpp).
+    void set_waveform(std::function<double(double)> waveform, double offset_s);
 
     /// Names of the recorded channels: the reference ("force", "voltage" or "base_acc")
     /// first, then each recorded channel, then "force" when a shaker drives.
@@ -174,6 +182,8 @@ class CoupledSpecimen {
     std::optional<ShakerSpec> shaker_;
     std::complex<double> force_per_volt_ = 1.0;  ///< blocked force per volt at this frequency
     int coil_ = -1;                              ///< the ShakerCoil's attachment, if any
+    std::function<double(double)> waveform_;     ///< set_waveform(); empty: the sine
+    double waveform_offset_s_ = 0.0;
 };
 
 }  // namespace sb::bench

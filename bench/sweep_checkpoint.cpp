@@ -105,6 +105,92 @@ std::vector<identification::PointRow> read_rows(Reader& r, long long expected = 
     return out;
 }
 
+using Series = std::vector<double>;
+
+void write_series(Writer& w, const char* key, const Series& v) {
+    checkpoint::write_vector(
+        w, key, Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())));
+}
+
+Series read_series(Reader& r, const char* key) {
+    const Eigen::VectorXd v = read_vector(r, key);
+    return {v.data(), v.data() + v.size()};
+}
+
+/// A random test's progress: its numbers, the overlapping half segment, the Welch sums.
+void write_random(Writer& w, const RandomProgress& p) {
+    w.key("random")
+        .integer(p.level_segments)
+        .integer(p.level_done ? 1 : 0)
+        .num(p.drive_rms)
+        .num(p.level_rms)
+        .integer(p.halves)
+        .num(p.clock_s)
+        .end();
+    w.key("tail").integer(static_cast<long long>(p.tail.size())).end();
+    for (const auto& channel : p.tail) write_series(w, "t", channel);
+    const auto& sums = p.sums;
+    w.key("welch")
+        .integer(sums.segments)
+        .integer(static_cast<long long>(sums.response.size()))
+        .end();
+    write_series(w, "gxx", sums.reference);
+    for (std::size_t c = 0; c < sums.response.size(); ++c) {
+        write_series(w, "gyy", sums.response[c]);
+        Series re, im;
+        for (const auto& v : sums.cross[c]) {
+            re.push_back(v.real());
+            im.push_back(v.imag());
+        }
+        write_series(w, "gxy_re", re);
+        write_series(w, "gxy_im", im);
+    }
+}
+
+RandomProgress read_random(Reader& r) {
+    RandomProgress p;
+    auto words = r.line("random");
+    const long long level_segments = r.integer(words);
+    const long long level_done = r.integer(words);
+    p.drive_rms = r.num(words);
+    p.level_rms = r.num(words);
+    const long long halves = r.integer(words);
+    p.clock_s = r.num(words);
+    r.end(words);
+    if (level_segments < 0 || level_segments > kMaxCount || halves < 0 || halves > kMaxCount ||
+        (level_done != 0 && level_done != 1) || !(p.drive_rms >= 0.0) || !(p.clock_s >= 0.0)) {
+        r.fail("implausible random test progress");
+    }
+    p.level_segments = static_cast<int>(level_segments);
+    p.level_done = level_done == 1;
+    p.halves = static_cast<int>(halves);
+    const long long tails = read_count(r, "tail");
+    if (tails > 64) r.fail("implausible channel count " + std::to_string(tails));
+    for (long long c = 0; c < tails; ++c) p.tail.push_back(read_series(r, "t"));
+    auto welch = r.line("welch");
+    const long long segments = r.integer(welch);
+    const long long channels = r.integer(welch);
+    r.end(welch);
+    if (segments < 0 || segments > kMaxCount || channels < 0 || channels > 64) {
+        r.fail("implausible Welch sums");
+    }
+    p.sums.segments = static_cast<int>(segments);
+    p.sums.reference = read_series(r, "gxx");
+    for (long long c = 0; c < channels; ++c) {
+        p.sums.response.push_back(read_series(r, "gyy"));
+        const Series re = read_series(r, "gxy_re");
+        const Series im = read_series(r, "gxy_im");
+        const std::size_t bins = p.sums.reference.size();
+        if (p.sums.response.back().size() != bins || re.size() != bins || im.size() != bins) {
+            r.fail("Welch sums of differing lengths");
+        }
+        std::vector<std::complex<double>> cross(bins);
+        for (std::size_t k = 0; k < bins; ++k) cross[k] = {re[k], im[k]};
+        p.sums.cross.push_back(std::move(cross));
+    }
+    return p;
+}
+
 /// "KEY n", then n lines "LINE_KEY<tab>text".
 void write_lines(Writer& w, const char* key, const char* line_key,
                  const std::vector<std::string>& lines) {
@@ -175,6 +261,7 @@ std::string serialize_checkpoint(const SweepCheckpoint& c) {
         write_lines(w, "series", "s", c.transient_series);
         write_lines(w, "envelope", "v", c.transient_envelope);
     }
+    if (c.random) write_random(w, *c.random);
     w.key("end").end();
     return seal_checkpoint(w.str());
 }
@@ -281,6 +368,7 @@ SweepCheckpoint parse_checkpoint(const std::string& text, const std::string& fil
                    std::to_string(periods) + " periods run");
         }
     }
+    if (r.next_is("random")) c.random = read_random(r);
     {
         auto words = r.line("end");
         r.end(words);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -11,8 +12,23 @@
 #include "bench/sweep_runner.hpp"
 #include "dem/setup.hpp"
 #include "identification/recording.hpp"
+#include "identification/welch.hpp"
 
 namespace sb::bench {
+
+/// Where a random test (campaign.random) stands: bench/random_test.hpp.
+struct RandomProgress {
+    int level_segments = 0;   ///< segments run to bring the level in
+    bool level_done = false;  ///< the averaging has begun
+    double drive_rms = 0.0;   ///< the drive's RMS now [N]
+    double level_rms = 0.0;   ///< the control channel's band RMS in the last level segment
+    int halves = 0;           ///< half segments of the averaging run
+    double clock_s = 0.0;     ///< time run since the start [s]
+    /// The last half segment's samples (the reference first, then every channel): the first
+    /// half of the next segment, which overlaps it.
+    std::vector<std::vector<double>> tail;
+    identification::WelchSums sums;  ///< the averaging's spectra so far
+};
 
 struct SweepCheckpoint {
     /// Hash of the resolved config that wrote it (bench/resolved_config.hpp): a checkpoint
@@ -32,6 +48,8 @@ struct SweepCheckpoint {
     int transient_periods = 0;
     std::vector<std::string> transient_series;
     std::vector<std::string> transient_envelope;
+    /// A random test: where it stands (finished when `points_done` is its lines' count).
+    std::optional<RandomProgress> random;
 };
 
 /// A checkpoint that cannot be resumed: truncated, corrupted (its checksum does not match its

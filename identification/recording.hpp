@@ -64,8 +64,9 @@ struct PointRow {
     /// (N, m/s^2, m or V: docs/campaign.md).
     double level_g = 0.0;
     double frequency_hz = 0.0;  ///< excitation frequency [Hz]
-    /// converged | limit-cycle-2 | closest | unsettled | measured (a run or a lab); predicted |
-    /// extrapolated | uncertain (`shakerbench predict`, docs/characterisation.md)
+    /// converged | limit-cycle-2 | closest | unsettled | measured (a run or a lab); random (a
+    /// line of a random test's H1: the reference's amplitude 1, each channel's H1); predicted
+    /// | extrapolated | uncertain (`shakerbench predict`, docs/characterisation.md)
     std::string status;
     std::string series;                ///< time history path relative to the directory, or empty
     std::vector<ChannelValue> values;  ///< one per channel, in Recording::channels order
@@ -99,9 +100,9 @@ struct DampingRow {
 };
 
 /// Every status a points.csv row may have, in the order messages list them.
-inline constexpr const char* kPointStatuses[] = {"converged",    "limit-cycle-2", "closest",
-                                                 "unsettled",    "measured",      "predicted",
-                                                 "extrapolated", "uncertain"};
+inline constexpr const char* kPointStatuses[] = {"converged", "limit-cycle-2", "closest",
+                                                 "unsettled", "measured",      "random",
+                                                 "predicted", "extrapolated",  "uncertain"};
 
 /// True for the statuses of points that did not hold their level (`closest`), did not settle
 /// at a fixed drive (`unsettled`: their window is a long mean), or whose

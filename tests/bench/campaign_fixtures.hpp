@@ -13,6 +13,7 @@
 
 #include "bench/campaign.hpp"
 #include "bench/campaign_config.hpp"
+#include "config/errors.hpp"
 #include "config/value.hpp"
 #include "core/text_file.hpp"
 #include "structure/spec.hpp"
@@ -153,6 +154,17 @@ default_ratio = )" +
            config::number_text(damping_ratio) + R"(
 [structure.excitation]
 )" + std::string(base_driven ? "kind = \"base\"\nsupport = \"ground\"\n" : "point = \"table\"\n");
+}
+
+/// The text of the ConfigException loading `text` (as `file_name`) throws, or a failure.
+inline std::string config_error(const std::string& text, const std::string& file_name) {
+    try {
+        (void)load_campaign_config_text(text, file_name);
+    } catch (const config::ConfigException& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "no ConfigException";
+    return {};
 }
 
 /// The campaign of `config` in memory on one thread, with `store` (none: nothing kept).

@@ -210,46 +210,39 @@ tolerance = 0.002
     }
 }
 
-/// The text of the ConfigException loading `text` throws, or a failure.
-std::string config_error(const std::string& text) {
-    try {
-        (void)load_campaign_config_text(text, "channels.toml");
-    } catch (const config::ConfigException& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no ConfigException";
-    return {};
-}
-
 TEST(Channels, AChannelThatReadsNothingIsAConfigErrorAtItsKey) {
     const auto with_channel = [](const std::string& lines) {
         return test::paper000_h0_with({}) + "\n[[campaign.channels]]\n" + lines + "\n";
     };
-    std::string message = config_error(with_channel("point = \"nowhere\""));
+    std::string message = test::config_error(with_channel("point = \"nowhere\""), "channels.toml");
     EXPECT_NE(message.find("campaign.channels[0].point"), std::string::npos) << message;
     EXPECT_NE(message.find("must name a point of the structure"), std::string::npos) << message;
 
-    message = config_error(with_channel("quantity = \"velocity\""));
+    message = test::config_error(with_channel("quantity = \"velocity\""), "channels.toml");
     EXPECT_NE(message.find("campaign.channels[0].point"), std::string::npos) << message;
     EXPECT_NE(message.find("is required for a motion channel"), std::string::npos) << message;
 
-    message = config_error(with_channel("quantity = \"damper-force\"\ndamper = \"other\""));
+    message = test::config_error(with_channel("quantity = \"damper-force\"\ndamper = \"other\""),
+                                 "channels.toml");
     EXPECT_NE(message.find("campaign.channels[0].damper"), std::string::npos) << message;
     EXPECT_NE(message.find("[dampers.other]"), std::string::npos) << message;
 
-    message = config_error(with_channel("point = \"acc4\""));  // acc_acc4 is a response already
+    message = test::config_error(with_channel("point = \"acc4\""),
+                                 "channels.toml");  // acc_acc4 is a response already
     EXPECT_NE(message.find("campaign.channels[0].name"), std::string::npos) << message;
     EXPECT_NE(message.find("is taken by another channel"), std::string::npos) << message;
 
-    message = config_error(with_channel("point = \"acc1\"\ndirection = [0.0, 0.0, 0.0]"));
+    message = test::config_error(with_channel("point = \"acc1\"\ndirection = [0.0, 0.0, 0.0]"),
+                                 "channels.toml");
     EXPECT_NE(message.find("campaign.channels[0].direction"), std::string::npos) << message;
 
-    message = config_error(with_channel("quantity = \"pressure\"\npoint = \"acc1\""));
+    message = test::config_error(with_channel("quantity = \"pressure\"\npoint = \"acc1\""),
+                                 "channels.toml");
     EXPECT_NE(message.find("campaign.channels[0].quantity"), std::string::npos) << message;
 
     std::string rigid = with_channel("quantity = \"damper-force\"\ndamper = \"pd\"");
     rigid.replace(rigid.find("[dampers.pd]\n"), 13, "[dampers.pd]\nmodel = \"rigid\"\n");
-    message = config_error(rigid);
+    message = test::config_error(rigid, "channels.toml");
     EXPECT_NE(message.find("campaign.channels[0].damper"), std::string::npos) << message;
     EXPECT_NE(message.find("rigid damper"), std::string::npos) << message;
 }

@@ -259,21 +259,10 @@ fraction = 1.0
     EXPECT_LT(force_worst, 1e-6 * force_scale) << "scale " << force_scale;
 }
 
-/// The text of the ConfigException loading `text` throws, or a failure.
-std::string transient_config_error(const std::string& text) {
-    try {
-        (void)load_campaign_config_text(text, "transient.toml");
-    } catch (const config::ConfigException& e) {
-        return e.what();
-    }
-    ADD_FAILURE() << "no ConfigException";
-    return {};
-}
-
 TEST(TransientRun, WithoutAFixedDriveOrAFrequencyItIsAConfigError) {
     std::string text = kSdof;
     text.replace(text.find("frequency_hz = 80.0\n"), 20, "");
-    std::string message = transient_config_error(text);
+    std::string message = test::config_error(text, "transient.toml");
     EXPECT_NE(message.find("campaign.transient.frequency_hz"), std::string::npos) << message;
     EXPECT_NE(message.find("is required"), std::string::npos) << message;
 
@@ -281,7 +270,7 @@ TEST(TransientRun, WithoutAFixedDriveOrAFrequencyItIsAConfigError) {
     text.replace(text.find("kind = \"fixed\"\namplitudes = [0.5]\n"), 34, "");
     text.replace(text.find("name = \"from-rest\"\n"), 19,
                  "name = \"from-rest\"\nlevels_g = [1.0]\n");
-    message = transient_config_error(text);
+    message = test::config_error(text, "transient.toml");
     EXPECT_NE(message.find("campaign.transient.duration_s"), std::string::npos) << message;
     EXPECT_NE(message.find("needs campaign.drive.kind = \"fixed\""), std::string::npos) << message;
 }

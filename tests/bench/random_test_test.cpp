@@ -1,0 +1,223 @@
+// Random tests (campaign.random): the noise is the band it says, H1 of a linear oscillator is
+// its accelerance and its modal fit the oscillator's frequency and damping, the level holds,
+// an interrupted test resumes to the same numbers, and the config's errors.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "bench/campaign.hpp"
+#include "bench/campaign_config.hpp"
+#include "bench/checkpoint_store.hpp"
+#include "bench/random_noise.hpp"
+#include "bench/sweep_checkpoint.hpp"
+#include "campaign_fixtures.hpp"
+#include "config/errors.hpp"
+#include "core/units.hpp"
+#include "identification/spectrum.hpp"
+
+namespace sb::bench {
+namespace {
+
+TEST(BandLimitedNoise, HasUnitRmsNoLineOutsideItsBandAndRepeatsWithItsSeed) {
+    const BandLimitedNoise noise(20.0, 80.0, 10.0, 3);
+    const auto& x = noise.samples();
+    double mean_square = 0.0;
+    for (double v : x) mean_square += v * v;
+    EXPECT_NEAR(mean_square / static_cast<double>(x.size()), 1.0, 1e-12);
+    const auto spectrum = identification::real_spectrum(x);
+    const double df = noise.sample_rate_hz() / static_cast<double>(x.size());
+    double inside = 0.0, outside = 0.0;
+    for (std::size_t j = 0; j < spectrum.size(); ++j) {
+        const double f = static_cast<double>(j) * df;
+        (f >= 20.0 - 1e-9 && f <= 80.0 + 1e-9 ? inside : outside) += std::norm(spectrum[j]);
+    }
+    EXPECT_LT(outside, 1e-20 * inside);
+    // Between samples: the straight line through them; at a sample, the sample.
+    const double dt = 1.0 / noise.sample_rate_hz();
+    EXPECT_DOUBLE_EQ(noise(5 * dt), x[5]);
+    EXPECT_NEAR(noise(5.25 * dt), 0.75 * x[5] + 0.25 * x[6], 1e-12);
+    EXPECT_EQ(BandLimitedNoise(20.0, 80.0, 10.0, 3).samples(), x);
+    EXPECT_NE(BandLimitedNoise(20.0, 80.0, 10.0, 4).samples(), x);
+}
+
+// The oscillator of test::table_on_a_spring: 0.05 kg on 2e4 N/m, 2 % damped (100.66 Hz,
+// half-power bandwidth 4 Hz), driven by noise in 50-150 Hz at 0.25 Hz lines.
+constexpr double kMassKg = 0.05, kStiffness = 2e4, kZeta = 0.02;
+
+std::string random_sdof(double level_g, const std::string& random_extra = "") {
+    return R"(
+[campaign]
+name = "random-sdof"
+control_point = "table"
+levels_g = [)" +
+           config::number_text(level_g) +
+           R"(]
+[campaign.random]
+low_hz = 50.0
+high_hz = 150.0
+resolution_hz = 0.25
+averages = 16
+)" + random_extra +
+           test::table_on_a_spring(kZeta);
+}
+
+std::complex<double> accelerance(double f_hz) {
+    const double w = kTwoPi * f_hz;
+    const double c = 2.0 * kZeta * std::sqrt(kStiffness * kMassKg);
+    return -w * w / std::complex<double>(kStiffness - kMassKg * w * w, c * w);
+}
+
+TEST(RandomTest, H1OfALinearOscillatorIsItsAccelerationAndItsFitTheOscillator) {
+    const CampaignConfig config = load_campaign_config_text(random_sdof(2.0), "random.toml");
+    const CampaignResult result = test::run_on_one_thread(config);
+    ASSERT_EQ(result.sweeps.size(), 1u);
+    const auto& rows = result.recording.points;
+    ASSERT_EQ(rows.size(), 401u);  // 50 to 150 Hz at 0.25 Hz
+    const double fn = std::sqrt(kStiffness / kMassKg) / kTwoPi;
+    double peak_error = 0.0;
+    for (const auto& row : rows) {
+        EXPECT_EQ(row.status, "random");
+        const auto h1 = row.values[1].amplitude / row.values[0].amplitude;
+        const double error = std::abs(h1 / accelerance(row.frequency_hz) - 1.0);
+        // The coherence from the line's RMS values: |H1|² G_xx / G_yy.
+        const double coherence = std::norm(h1) * std::pow(row.values[0].rms / row.values[1].rms, 2);
+        EXPECT_LE(coherence, 1.0 + 1e-9);
+        // H1's random error over n_d = 16 averages, sqrt(1 - g²) / (|g| sqrt(2 n_d))
+        // (Bendat & Piersol 2010, Table 9.6), four times, with the Hann window's bias at the
+        // peak, (1/3)(1.5 df / 2 zeta fn)² = 0.3 % (§8.5.1), besides: the coherence is below
+        // 1 near the peak (0.993 at worst) because each 4 s segment holds the response to
+        // drive from before it (a 2 % mode rings for 1 / (zeta w) = 0.08 s).
+        const double allowed = 0.003 + 4.0 * std::sqrt(1.0 - std::min(coherence, 1.0)) /
+                                           (std::sqrt(coherence) * std::sqrt(32.0));
+        EXPECT_LT(error, allowed) << row.frequency_hz << " Hz, coherence " << coherence;
+        if (std::abs(row.frequency_hz - 100.75) < 1.0) peak_error = std::max(peak_error, error);
+    }
+    EXPECT_GT(peak_error, 0.0);
+    // The level: the band RMS the drive's spectrum gives through H1 held within 5 %.
+    const std::string& line = result.sweeps.front().settings.back();
+    const auto at = line.find("control ");
+    ASSERT_NE(at, std::string::npos) << line;
+    EXPECT_NEAR(std::stod(line.substr(at + 8)), 2.0, 0.1) << line;
+    EXPECT_EQ(line.find("did not hold"), std::string::npos) << line;
+    int fits = 0;
+    for (const auto& d : result.recording.damping) {
+        if (d.method != "half-power" && d.method != "circle-fit") continue;
+        ++fits;
+        EXPECT_NEAR(d.natural_frequency_hz, fn, 1e-3 * fn) << d.method;
+        EXPECT_NEAR(d.damping_ratio, kZeta, 0.03 * kZeta) << d.method;
+    }
+    EXPECT_EQ(fits, 2);
+}
+
+/// Keeps every checkpoint saved, and fails (as a killed process would) at the n-th.
+class FailingStore : public MemoryCheckpointStore {
+  public:
+    explicit FailingStore(int fail_at) : fail_at_(fail_at) {}
+    void save_checkpoint(const std::string& key, const std::string& text) override {
+        if (++saves == fail_at_) throw std::runtime_error("interrupted");
+        MemoryCheckpointStore::save_checkpoint(key, text);
+    }
+    int saves = 0;
+    int fail_at_;
+};
+
+TEST(RandomTest, AnInterruptedTestResumesToTheSameNumbers) {
+    const CampaignConfig config =
+        load_campaign_config_text(random_sdof(1.0, "checkpoint_segments = 3\n"), "random.toml");
+    FailingStore whole_store(-1);
+    const CampaignResult whole = test::run_on_one_thread(config, &whole_store);
+    // Level segments, then every third of the 17 halves and the last.
+    ASSERT_GE(whole_store.saves, 7);
+    for (int fail_at : {2, whole_store.saves - 2}) {
+        FailingStore store(fail_at);
+        EXPECT_THROW(test::run_on_one_thread(config, &store), std::runtime_error);
+        store.fail_at_ = -1;
+        const CampaignResult resumed = test::run_on_one_thread(config, &store);
+        ASSERT_EQ(resumed.recording.points.size(), whole.recording.points.size());
+        for (std::size_t i = 0; i < whole.recording.points.size(); ++i) {
+            const auto& a = resumed.recording.points[i].values;
+            const auto& b = whole.recording.points[i].values;
+            for (std::size_t c = 0; c < a.size(); ++c) {
+                EXPECT_EQ(a[c].amplitude, b[c].amplitude) << fail_at << " " << i;
+                EXPECT_EQ(a[c].rms, b[c].rms) << fail_at << " " << i;
+            }
+        }
+    }
+}
+
+TEST(RandomTest, TheCheckpointTextGivesItsProgressBackExactly) {
+    SweepCheckpoint c;
+    c.config_hash = "abc";
+    c.state.q = Eigen::VectorXd::Constant(1, 0.25);
+    c.state.q_dot = Eigen::VectorXd::Constant(1, -1.0 / 3.0);
+    RandomProgress p;
+    p.level_segments = 3;
+    p.level_done = true;
+    p.drive_rms = 0.1 + 1e-17;
+    p.level_rms = 9.80665;
+    p.halves = 5;
+    p.clock_s = 28.0;
+    p.tail = {{1.0 / 3.0, 2.0}, {-0.5, 1e-300}};
+    p.sums.segments = 4;
+    p.sums.reference = {1.0, 2.0 / 3.0};
+    p.sums.response = {{3.0, 4.0}};
+    p.sums.cross = {{{0.1, -0.2}, {1.0 / 7.0, 5.0}}};
+    c.random = p;
+    const SweepCheckpoint back = parse_checkpoint(serialize_checkpoint(c), "c.txt");
+    ASSERT_TRUE(back.random);
+    EXPECT_EQ(back.random->level_segments, 3);
+    EXPECT_TRUE(back.random->level_done);
+    EXPECT_EQ(back.random->drive_rms, p.drive_rms);
+    EXPECT_EQ(back.random->halves, 5);
+    EXPECT_EQ(back.random->tail, p.tail);
+    EXPECT_EQ(back.random->sums.reference, p.sums.reference);
+    EXPECT_EQ(back.random->sums.response, p.sums.response);
+    EXPECT_EQ(back.random->sums.cross, p.sums.cross);
+    // A sum of another length than the line count is damage.
+    std::string text = serialize_checkpoint(c);
+    const auto at = text.find("gyy 2 ");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, 6, "gyy 1 ");
+    EXPECT_THROW(parse_checkpoint(seal_checkpoint(checkpoint_content(text)), "c.txt"),
+                 CheckpointError);
+}
+
+TEST(RandomTest, ABandUpsideDownABaseExcitationOrARunFromRestIsAConfigError) {
+    std::string text = random_sdof(1.0);
+    text.replace(text.find("low_hz = 50.0"), 13, "low_hz = 150.0");
+    std::string message = test::config_error(text, "random.toml");
+    EXPECT_NE(message.find("campaign.random.low_hz"), std::string::npos) << message;
+    EXPECT_NE(message.find("below campaign.random.high_hz"), std::string::npos) << message;
+
+    text = random_sdof(1.0);
+    text.replace(text.find("resolution_hz = 0.25"), 20, "resolution_hz = 20");
+    message = test::config_error(text, "random.toml");
+    EXPECT_NE(message.find("campaign.random.resolution_hz"), std::string::npos) << message;
+
+    text = R"(
+[campaign]
+name = "random-base"
+control_point = "table"
+levels_g = [1.0]
+[campaign.random]
+low_hz = 50.0
+high_hz = 150.0
+)" + test::table_on_a_spring(kZeta, true);
+    message = test::config_error(text, "random.toml");
+    EXPECT_NE(message.find("needs a force excitation"), std::string::npos) << message;
+
+    text = random_sdof(1.5) +
+           "[campaign.drive]\nkind = \"fixed\"\namplitudes = [1.0]\n"
+           "[campaign.transient]\nduration_s = 1.0\nfrequency_hz = 100.0\n";
+    text.replace(text.find("levels_g = [1.5]\n"), 17, "");
+    message = test::config_error(text, "random.toml");
+    EXPECT_NE(message.find("cannot go with campaign.transient"), std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace sb::bench
