@@ -163,9 +163,11 @@ ModalEstimate circle_fit_of(const Frf& input, const CircleFitOptions& options) {
     if (a.back() < a.front()) {
         for (auto& v : a) v = -v;
     }
+    // A step back is noise on the FRF (a random test's H1, a measured point): the angle fit
+    // below takes it. A step too large leaves the arc unknown between the points.
     for (std::size_t i = 1; i < a.size(); ++i) {
         const double step = a[i] - a[i - 1];
-        if (!(step > 0.0 && step <= kMaxAngleStep)) {
+        if (!(std::abs(step) <= kMaxAngleStep)) {
             return failed_estimate(
                 EstimateStatus::too_few_points,
                 "the arc is too coarsely sampled: " +

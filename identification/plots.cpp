@@ -191,8 +191,15 @@ PlotResult write_plots(const fs::path& out_dir, const std::vector<LevelIdentific
         result.data.push_back(frf_file);
         result.data.push_back(curve_file);
 
-        // FRF: magnitude (log) and phase, one curve per level with a point.
+        // FRF: magnitude (log) and phase, one curve per level with a point, or as lines alone
+        // on a fine grid (a random test's hundreds of lines: a marker each would make the SVG
+        // tens of megabytes and hide the curve).
         if (!drawn.empty()) {
+            std::size_t most_points = 0;
+            for (const auto* l : drawn)
+                most_points = std::max(most_points, l->frf.frequency_hz.size());
+            const char* style =
+                most_points > 200 ? " with lines title " : " with linespoints title ";
             const fs::path frf_svg = out_dir / (name + "-frf.svg");
             const std::string form = form_name(drawn.front()->frf.form);
             gp << "\nset output " << quoted("../" + frf_svg.filename().string()) << '\n'
@@ -200,15 +207,13 @@ PlotResult write_plots(const fs::path& out_dir, const std::vector<LevelIdentific
                << "\nset ylabel " << quoted("|" + form + "|") << "\nset logscale y\nplot ";
             for (std::size_t b = 0; b < drawn.size(); ++b) {
                 gp << (b ? ", " : "") << quoted(frf_file.filename().string()) << " index " << b
-                   << " using 1:2 with linespoints title "
-                   << quoted(block_title(*drawn[b], options.level_unit));
+                   << " using 1:2" << style << quoted(block_title(*drawn[b], options.level_unit));
             }
             gp << "\nunset logscale y\nset ylabel 'phase [deg]'\nset xlabel 'frequency [Hz]'"
                   "\nplot ";
             for (std::size_t b = 0; b < drawn.size(); ++b) {
                 gp << (b ? ", " : "") << quoted(frf_file.filename().string()) << " index " << b
-                   << " using 1:3 with linespoints title "
-                   << quoted(block_title(*drawn[b], options.level_unit));
+                   << " using 1:3" << style << quoted(block_title(*drawn[b], options.level_unit));
             }
             gp << "\nunset multiplot\nunset xlabel\n";
             result.svg.push_back(frf_svg);
