@@ -77,6 +77,18 @@ void write_energy_log(const CampaignConfig& config, const CampaignResult& result
     write_file_atomically(out_dir / "energy.csv", text);
 }
 
+/// Random tests: random/<sweep>.csv, each line's spectra, H1 and coherence.
+void write_random_spectra(const CampaignResult& result, const fs::path& out_dir) {
+    for (const auto& sweep : result.sweeps) {
+        if (sweep.random_spectra.empty()) continue;
+        const fs::path dir = out_dir / "random";
+        create_directories_for_writing(dir);
+        std::string text;
+        for (const auto& line : sweep.random_spectra) text += line + "\n";
+        write_file_atomically(dir / (sweep.key + ".csv"), text);
+    }
+}
+
 /// A run from rest: transient/<sweep>.csv (the time histories), transient/<sweep>_envelope.csv
 /// (each channel's lowest and highest value per period) and, with plots, one SVG per sweep
 /// of every channel's envelope against time (the reference's left out: it is the drive).
@@ -165,6 +177,7 @@ void write_campaign_output(const CampaignConfig& config, const CampaignResult& r
     }
     if (config.campaign.output.energy) write_energy_log(config, result, out_dir);
     if (config.campaign.transient.on()) write_transients(config, result, out_dir);
+    if (config.campaign.random.on()) write_random_spectra(result, out_dir);
     write_file_atomically(out_dir / "config.toml", directory.config_text);
     write_file_atomically(out_dir / "config.resolved.toml", resolved_config_toml(config));
     write_provenance(config, result, directory);

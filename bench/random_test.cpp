@@ -89,7 +89,7 @@ identification::WelchSpectra run_random_test(CoupledSpecimen& specimen,
         checkpoint.state = specimen.state();
     }
     RandomProgress* p = &*checkpoint.random;
-    averaged.restore(p->sums.reference.empty() ? averaged.sums() : p->sums);
+    if (!p->sums.reference.empty()) averaged.restore(p->sums);
     const auto resume = [&] {
         specimen.set_frequency(2.0 * spec.resolution_hz);
         specimen.restore(checkpoint.state);
@@ -146,12 +146,7 @@ identification::WelchSpectra run_random_test(CoupledSpecimen& specimen,
              (setup.target_rms_m_s2
                   ? " (target " + significant_text(*setup.target_rms_m_s2, 4) + ")"
                   : std::string()));
-        // The averaging starts from no segment.
-        if (p->level_done)
-            averaged.restore(identification::WelchSpectra(segment_samples, sample_rate_hz,
-                                                          spec.low_hz, spec.high_hz,
-                                                          static_cast<int>(channels) - 1)
-                                 .sums());
+        if (p->level_done) averaged.clear();  // the averaging starts from no segment
         checkpoint_now();
     }
     while (p->halves < spec.averages + 1) {

@@ -397,6 +397,7 @@ std::string serialize_sweep_result(const SweepResult& result) {
     write_lines(w, "transient_channels", "c", result.transient_channels);
     write_lines(w, "series", "s", result.transient_series);
     write_lines(w, "envelope", "v", result.transient_envelope);
+    write_lines(w, "random_spectra", "r", result.random_spectra);
     w.key("resumed_points").integer(result.resumed_points).end();
     w.key("periods_simulated").integer(result.periods_simulated).end();
     w.key("end").end();
@@ -439,6 +440,7 @@ SweepResult parse_sweep_result(const std::string& text, const std::string& sourc
     s.transient_channels = read_lines(r, "transient_channels", "c");
     s.transient_series = read_lines(r, "series", "s");
     s.transient_envelope = read_lines(r, "envelope", "v");
+    s.random_spectra = read_lines(r, "random_spectra", "r");
     {
         auto words = r.line("resumed_points");
         s.resumed_points = static_cast<int>(r.integer(words));

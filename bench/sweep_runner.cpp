@@ -406,8 +406,10 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
             row.filling = task.filling;
             out.frequencies_hz.push_back(row.frequency_hz);
         }
-        store.save_file("random/" + task.key + ".csv",
-                        random_spectra_text(spectra, specimen.channel_names()));
+        std::istringstream spectra_lines(random_spectra_text(spectra, specimen.channel_names()));
+        for (std::string line; std::getline(spectra_lines, line);) {
+            out.random_spectra.push_back(line);
+        }
         out.settings.push_back(name + ": random test, " + std::to_string(done.level_segments) +
                                " level segments and " + std::to_string(spectra.sums().segments) +
                                " averages of " +

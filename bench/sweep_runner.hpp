@@ -33,6 +33,9 @@ struct SweepResult {
     std::vector<std::string> transient_series;
     std::vector<std::string> transient_envelope;
     std::vector<std::string> transient_channels;
+    /// A random test (campaign.random): random/<sweep>.csv, its header first
+    /// (random_spectra_text of bench/random_test.hpp), one line per row.
+    std::vector<std::string> random_spectra;
     int resumed_points = 0;  ///< taken from the store, not simulated
     long long periods_simulated = 0;
 };

@@ -1,6 +1,7 @@
 // Welch's averaged periodogram (Welch 1967; Bendat & Piersol 2010, §11.5).
 #include "identification/welch.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -101,6 +102,13 @@ double WelchSpectra::reference_psd(int bin) const {
 double WelchSpectra::response_psd(int channel, int bin) const {
     return sums_.response[static_cast<std::size_t>(channel)][static_cast<std::size_t>(bin)] *
            psd_scale();
+}
+
+void WelchSpectra::clear() {
+    sums_.segments = 0;
+    std::fill(sums_.reference.begin(), sums_.reference.end(), 0.0);
+    for (auto& v : sums_.response) std::fill(v.begin(), v.end(), 0.0);
+    for (auto& v : sums_.cross) std::fill(v.begin(), v.end(), std::complex<double>(0.0));
 }
 
 void WelchSpectra::restore(WelchSums sums) {

@@ -55,6 +55,8 @@ class WelchSpectra {
     [[nodiscard]] double response_psd(int channel, int bin) const;
 
     [[nodiscard]] const WelchSums& sums() const { return sums_; }
+    /// Forgets every segment added.
+    void clear();
     /// Continues from sums of an estimate with the same segment, band and channels; throws
     /// std::invalid_argument when they do not fit.
     void restore(WelchSums sums);

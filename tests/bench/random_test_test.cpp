@@ -6,18 +6,22 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "bench/campaign.hpp"
 #include "bench/campaign_config.hpp"
+#include "bench/campaign_output.hpp"
 #include "bench/checkpoint_store.hpp"
 #include "bench/random_noise.hpp"
 #include "bench/sweep_checkpoint.hpp"
 #include "campaign_fixtures.hpp"
 #include "config/errors.hpp"
+#include "core/text_file.hpp"
 #include "core/units.hpp"
+#include "identification/recording_io.hpp"
 #include "identification/spectrum.hpp"
 
 namespace sb::bench {
@@ -47,7 +51,7 @@ TEST(BandLimitedNoise, HasUnitRmsNoLineOutsideItsBandAndRepeatsWithItsSeed) {
 
 // The oscillator of test::table_on_a_spring: 0.05 kg on 2e4 N/m, 2 % damped (100.66 Hz,
 // half-power bandwidth 4 Hz), driven by noise in 50-150 Hz at 0.25 Hz lines.
-constexpr double kMassKg = 0.05, kStiffness = 2e4, kZeta = 0.02;
+constexpr double kRandomMassKg = 0.05, kRandomStiffness = 2e4, kRandomZeta = 0.02;
 
 std::string random_sdof(double level_g, const std::string& random_extra = "") {
     return R"(
@@ -63,13 +67,13 @@ high_hz = 150.0
 resolution_hz = 0.25
 averages = 16
 )" + random_extra +
-           test::table_on_a_spring(kZeta);
+           test::table_on_a_spring(kRandomZeta);
 }
 
-std::complex<double> accelerance(double f_hz) {
+std::complex<double> oscillator_accelerance(double f_hz) {
     const double w = kTwoPi * f_hz;
-    const double c = 2.0 * kZeta * std::sqrt(kStiffness * kMassKg);
-    return -w * w / std::complex<double>(kStiffness - kMassKg * w * w, c * w);
+    const double c = 2.0 * kRandomZeta * std::sqrt(kRandomStiffness * kRandomMassKg);
+    return -w * w / std::complex<double>(kRandomStiffness - kRandomMassKg * w * w, c * w);
 }
 
 TEST(RandomTest, H1OfALinearOscillatorIsItsAccelerationAndItsFitTheOscillator) {
@@ -78,12 +82,12 @@ TEST(RandomTest, H1OfALinearOscillatorIsItsAccelerationAndItsFitTheOscillator) {
     ASSERT_EQ(result.sweeps.size(), 1u);
     const auto& rows = result.recording.points;
     ASSERT_EQ(rows.size(), 401u);  // 50 to 150 Hz at 0.25 Hz
-    const double fn = std::sqrt(kStiffness / kMassKg) / kTwoPi;
+    const double fn = std::sqrt(kRandomStiffness / kRandomMassKg) / kTwoPi;
     double peak_error = 0.0;
     for (const auto& row : rows) {
         EXPECT_EQ(row.status, "random");
         const auto h1 = row.values[1].amplitude / row.values[0].amplitude;
-        const double error = std::abs(h1 / accelerance(row.frequency_hz) - 1.0);
+        const double error = std::abs(h1 / oscillator_accelerance(row.frequency_hz) - 1.0);
         // The coherence from the line's RMS values: |H1|² G_xx / G_yy.
         const double coherence = std::norm(h1) * std::pow(row.values[0].rms / row.values[1].rms, 2);
         EXPECT_LE(coherence, 1.0 + 1e-9);
@@ -109,9 +113,34 @@ TEST(RandomTest, H1OfALinearOscillatorIsItsAccelerationAndItsFitTheOscillator) {
         if (d.method != "half-power" && d.method != "circle-fit") continue;
         ++fits;
         EXPECT_NEAR(d.natural_frequency_hz, fn, 1e-3 * fn) << d.method;
-        EXPECT_NEAR(d.damping_ratio, kZeta, 0.03 * kZeta) << d.method;
+        EXPECT_NEAR(d.damping_ratio, kRandomZeta, 0.03 * kRandomZeta) << d.method;
     }
     EXPECT_EQ(fits, 2);
+}
+
+TEST(RandomTest, ItsDirectoryHoldsTheSpectraAndTheLinesAsARecordingThatReadsBack) {
+    const CampaignConfig config = load_campaign_config_text(random_sdof(1.0), "random.toml");
+    const CampaignResult result = test::run_on_one_thread(config);
+    // Another process's sweep comes back whole (mpirun: distributed/).
+    const SweepResult& sweep = result.sweeps.front();
+    const SweepResult back = parse_sweep_result(serialize_sweep_result(sweep), "rank 1");
+    EXPECT_EQ(back.random_spectra, sweep.random_spectra);
+    const auto dir = test::fresh_dir("random-output");
+    write_campaign_output(config, result, {dir, random_sdof(1.0), "test"});
+    const std::string spectra = read_text_file(dir / "random" / (sweep.key + ".csv"));
+    EXPECT_EQ(spectra.substr(0, spectra.find('\n')),
+              "frequency_hz,force_psd,acc_table_psd,acc_table_h1_re,acc_table_h1_im,"
+              "acc_table_coherence");
+    EXPECT_EQ(std::count(spectra.begin(), spectra.end(), '\n'), 1 + 401);
+    const identification::Recording recording = identification::read_recording(dir);
+    ASSERT_EQ(recording.points.size(), 401u);
+    for (std::size_t i = 0; i < recording.points.size(); ++i) {
+        EXPECT_EQ(recording.points[i].status, "random");
+        const auto read = recording.points[i].values[1].amplitude;
+        const auto run = result.recording.points[i].values[1].amplitude;
+        EXPECT_LE(std::abs(read - run), 1e-12 * std::abs(run)) << i;
+    }
+    std::filesystem::remove_all(dir);
 }
 
 /// Keeps every checkpoint saved, and fails (as a killed process would) at the n-th.
@@ -207,7 +236,7 @@ levels_g = [1.0]
 [campaign.random]
 low_hz = 50.0
 high_hz = 150.0
-)" + test::table_on_a_spring(kZeta, true);
+)" + test::table_on_a_spring(kRandomZeta, true);
     message = test::config_error(text, "random.toml");
     EXPECT_NE(message.find("needs a force excitation"), std::string::npos) << message;
 

@@ -114,7 +114,7 @@ TEST(Welch, TheDensityOfWhiteNoiseIsTwiceItsVarianceOverTheRate) {
     EXPECT_NEAR(s.response_psd(0, 7), s.reference_psd(7), 1e-15);
 }
 
-TEST(Welch, SumsContinueWhereTheyStoppedAndRefuseAnotherBand) {
+TEST(Welch, SumsContinueWhereTheyStoppedStartOverWhenClearedAndRefuseAnotherBand) {
     const auto x = white(8 * kSegment, 1.0, 5);
     const auto y = fir(x);
     const WelchSpectra whole = welch(x, y, 10.0, 400.0);
@@ -129,6 +129,12 @@ TEST(Welch, SumsContinueWhereTheyStoppedAndRefuseAnotherBand) {
     }
     ASSERT_EQ(resumed.segments(), whole.segments());
     for (int k = 0; k < whole.bins(); ++k) EXPECT_EQ(resumed.h1(0, k), whole.h1(0, k));
+    resumed.clear();
+    EXPECT_EQ(resumed.segments(), 0);
+    resumed.add_segment({x.data(), kSegment}, {{y.data(), kSegment}});
+    WelchSpectra single(kSegment, kRateHz, 10.0, 400.0, 1);
+    single.add_segment({x.data(), kSegment}, {{y.data(), kSegment}});
+    EXPECT_EQ(resumed.h1(0, 5), single.h1(0, 5));
     WelchSpectra other(kSegment, kRateHz, 20.0, 400.0, 1);
     EXPECT_THROW(other.restore(first.sums()), std::invalid_argument);
     EXPECT_THROW(WelchSpectra(kSegment, kRateHz, 10.0, 600.0, 1), std::invalid_argument);
