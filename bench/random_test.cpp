@@ -93,10 +93,10 @@ identification::WelchSpectra run_random_test(CoupledSpecimen& specimen,
     const auto resume = [&] {
         specimen.set_frequency(2.0 * spec.resolution_hz);
         specimen.restore(checkpoint.state);
-        specimen.set_waveform(waveform, p->clock_s);
+        // The noise goes on where the run stands: every segment run so far, half by half.
+        specimen.set_waveform(waveform, (2 * p->level_segments + p->halves) * half_s);
     };
     const auto checkpoint_now = [&] {
-        p->clock_s = (2 * p->level_segments + p->halves) * half_s;
         p->sums = averaged.sums();
         checkpoint.state = specimen.state();
         save();  // re-reads the checkpoint from its text, as a resumed test does

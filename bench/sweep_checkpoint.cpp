@@ -125,7 +125,6 @@ void write_random(Writer& w, const RandomProgress& p) {
         .num(p.drive_rms)
         .num(p.level_rms)
         .integer(p.halves)
-        .num(p.clock_s)
         .end();
     w.key("tail").integer(static_cast<long long>(p.tail.size())).end();
     for (const auto& channel : p.tail) write_series(w, "t", channel);
@@ -155,10 +154,9 @@ RandomProgress read_random(Reader& r) {
     p.drive_rms = r.num(words);
     p.level_rms = r.num(words);
     const long long halves = r.integer(words);
-    p.clock_s = r.num(words);
     r.end(words);
     if (level_segments < 0 || level_segments > kMaxCount || halves < 0 || halves > kMaxCount ||
-        (level_done != 0 && level_done != 1) || !(p.drive_rms >= 0.0) || !(p.clock_s >= 0.0)) {
+        (level_done != 0 && level_done != 1) || !(p.drive_rms >= 0.0)) {
         r.fail("implausible random test progress");
     }
     p.level_segments = static_cast<int>(level_segments);

@@ -23,7 +23,6 @@ struct RandomProgress {
     double drive_rms = 0.0;   ///< the drive's RMS now [N]
     double level_rms = 0.0;   ///< the control channel's band RMS in the last level segment
     int halves = 0;           ///< half segments of the averaging run
-    double clock_s = 0.0;     ///< time run since the start [s]
     /// The last half segment's samples (the reference first, then every channel): the first
     /// half of the next segment, which overlaps it.
     std::vector<std::vector<double>> tail;

@@ -18,7 +18,7 @@
 #include "bench/linear_estimate.hpp"
 #include "bench/physics_attachments.hpp"
 #include "bench/prediction.hpp"
-#include "bench/random_test.hpp"
+#include "bench/random_sweep.hpp"
 #include "bench/settled_bed.hpp"
 #include "bench/specimen_plant.hpp"
 #include "bench/sweep_checkpoint.hpp"
@@ -371,58 +371,13 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
             }
             progress.note(task.key + ": random test resumed");
         }
-        RandomTestSetup setup;
-        setup.spec = campaign.random;
-        setup.seed = task.seed;
-        if (fixed) {
-            setup.start_drive_rms = task.level_g;
-        } else {
-            // Flat force spectrum over the band: sigma_a / sigma_F = sqrt(mean |H|^2).
-            setup.target_rms_m_s2 = target_rms;
-            const int lines = 200;
-            double mean_square_gain = 0.0;
-            for (int k = 0; k < lines; ++k) {
-                const double f =
-                    campaign.random.low_hz +
-                    (campaign.random.high_hz - campaign.random.low_hz) * (k + 0.5) / lines;
-                mean_square_gain += std::pow(linear_gain(f), 2) / lines;
-            }
-            setup.start_drive_rms = target_rms / std::sqrt(mean_square_gain);
-        }
-        const std::string name = prepared.arrangement.name + " " + significant_text(task.level_g) +
-                                 " " + task.level_unit;
-        const auto spectra =
-            run_random_test(specimen, setup, checkpoint, save,
-                            [&](const std::string& line) { progress.note(name + ": " + line); });
-        const double sample_rate_hz = spectra.segment_samples() * campaign.random.resolution_hz;
-        const RandomProgress& done = *checkpoint.random;
-        const double measured = band_rms(spectra, 1, sample_rate_hz);
-        const double achieved = done.level_rms;
-        const bool held =
-            fixed || std::abs(achieved / target_rms - 1.0) <= campaign.random.tolerance;
-        out.rows = random_rows(spectra, prepared.arrangement.name, task.level_g,
-                               held ? "random" : "closest");
-        for (auto& row : out.rows) {
-            row.filling = task.filling;
-            out.frequencies_hz.push_back(row.frequency_hz);
-        }
-        std::istringstream spectra_lines(random_spectra_text(spectra, specimen.channel_names()));
-        for (std::string line; std::getline(spectra_lines, line);) {
-            out.random_spectra.push_back(line);
-        }
-        out.settings.push_back(name + ": random test, " + std::to_string(done.level_segments) +
-                               " level segments and " + std::to_string(spectra.sums().segments) +
-                               " averages of " +
-                               significant_text(1.0 / campaign.random.resolution_hz) +
-                               " s; drive " + significant_text(done.drive_rms, 4) +
-                               " RMS, control " + significant_text(achieved / kStandardGravity, 4) +
-                               " g RMS in " + significant_text(campaign.random.low_hz) + "-" +
-                               significant_text(campaign.random.high_hz) + " Hz (" +
-                               significant_text(measured / kStandardGravity, 4) + " g measured)" +
-                               (held ? "" : " (the level did not hold: lines marked closest)"));
-        progress.note(out.settings.back());
-        // The specimen's periods here are half segments.
-        out.periods_simulated = 2 * done.level_segments + done.halves;
+        RandomSweep sweep;
+        sweep.spec = &campaign.random;
+        sweep.task = &task;
+        sweep.arrangement = prepared.arrangement.name;
+        if (!fixed) sweep.target_rms_m_s2 = target_rms;
+        sweep.linear_gain = linear_gain;
+        run_random_sweep(specimen, sweep, checkpoint, save, progress, out);
         return out;
     }
     if (const auto text = store.load_checkpoint(task.key)) {

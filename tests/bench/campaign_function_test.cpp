@@ -16,12 +16,14 @@
 #include "config/errors.hpp"
 #include "core/text_file.hpp"
 #include "identification/recording_io.hpp"
+#include "killed_store.hpp"
 
 namespace sb::bench {
 namespace {
 
 using test::fresh_dir;
 using test::paper000_h0_with;
+using testing::InterruptedStore;
 
 /// A small real campaign: 30 particles, two levels, five frequencies around resonance.
 CampaignConfig small_dem_campaign() {
@@ -162,25 +164,6 @@ TEST(CampaignFunction, PointsCarryTheHarmonicRatiosOfEveryChannel) {
     EXPECT_GT(values[1].h3_ratio, 1e-4);
     EXPECT_LT(values[1].h3_ratio, 0.5);
 }
-
-/// A memory store that fails (as a killed process would) before its n-th checkpoint lands.
-class InterruptedStore : public MemoryCheckpointStore {
-  public:
-    explicit InterruptedStore(int fail_at) : fail_at_(fail_at) {}
-    void save_checkpoint(const std::string& key, const std::string& text) override {
-        if (++saves_ == fail_at_) throw std::runtime_error("interrupted");
-        MemoryCheckpointStore::save_checkpoint(key, text);
-        last_key_ = key;
-    }
-    void stop_failing() { fail_at_ = -1; }
-    /// The sweep whose checkpoint landed last.
-    [[nodiscard]] const std::string& last_key() const { return last_key_; }
-
-  private:
-    int fail_at_;
-    std::string last_key_;
-    int saves_ = 0;
-};
 
 TEST(CampaignFunction, AnInterruptedRunResumedEqualsAnUninterruptedOneWithStaticFriction) {
     // The history-spring law keeps tangential springs in every contact: a resumed sweep must

@@ -23,6 +23,7 @@
 #include "core/units.hpp"
 #include "identification/recording_io.hpp"
 #include "identification/spectrum.hpp"
+#include "killed_store.hpp"
 
 namespace sb::bench {
 namespace {
@@ -143,29 +144,18 @@ TEST(RandomTest, ItsDirectoryHoldsTheSpectraAndTheLinesAsARecordingThatReadsBack
     std::filesystem::remove_all(dir);
 }
 
-/// Keeps every checkpoint saved, and fails (as a killed process would) at the n-th.
-class FailingStore : public MemoryCheckpointStore {
-  public:
-    explicit FailingStore(int fail_at) : fail_at_(fail_at) {}
-    void save_checkpoint(const std::string& key, const std::string& text) override {
-        if (++saves == fail_at_) throw std::runtime_error("interrupted");
-        MemoryCheckpointStore::save_checkpoint(key, text);
-    }
-    int saves = 0;
-    int fail_at_;
-};
-
 TEST(RandomTest, AnInterruptedTestResumesToTheSameNumbers) {
     const CampaignConfig config =
         load_campaign_config_text(random_sdof(1.0, "checkpoint_segments = 3\n"), "random.toml");
-    FailingStore whole_store(-1);
+    testing::InterruptedStore whole_store;
     const CampaignResult whole = test::run_on_one_thread(config, &whole_store);
+    const int saves = static_cast<int>(whole_store.saved.size());
     // Level segments, then every third of the 17 halves and the last.
-    ASSERT_GE(whole_store.saves, 7);
-    for (int fail_at : {2, whole_store.saves - 2}) {
-        FailingStore store(fail_at);
+    ASSERT_GE(saves, 7);
+    for (int fail_at : {2, saves - 2}) {
+        testing::InterruptedStore store(fail_at);
         EXPECT_THROW(test::run_on_one_thread(config, &store), std::runtime_error);
-        store.fail_at_ = -1;
+        store.stop_failing();
         const CampaignResult resumed = test::run_on_one_thread(config, &store);
         ASSERT_EQ(resumed.recording.points.size(), whole.recording.points.size());
         for (std::size_t i = 0; i < whole.recording.points.size(); ++i) {
@@ -190,7 +180,6 @@ TEST(RandomTest, TheCheckpointTextGivesItsProgressBackExactly) {
     p.drive_rms = 0.1 + 1e-17;
     p.level_rms = 9.80665;
     p.halves = 5;
-    p.clock_s = 28.0;
     p.tail = {{1.0 / 3.0, 2.0}, {-0.5, 1e-300}};
     p.sums.segments = 4;
     p.sums.reference = {1.0, 2.0 / 3.0};

@@ -22,6 +22,7 @@
 #include "config/errors.hpp"
 #include "core/text_file.hpp"
 #include "core/units.hpp"
+#include "killed_store.hpp"
 
 namespace sb::bench {
 namespace {
@@ -134,23 +135,6 @@ std::string sdof_with_damper(const std::string& tables, const std::string& durat
     return text;
 }
 
-/// Keeps every checkpoint saved, and fails (as a killed process would) at the n-th.
-class RecordingStore : public MemoryCheckpointStore {
-  public:
-    explicit RecordingStore(int fail_at = -1) : fail_at_(fail_at) {}
-    void save_checkpoint(const std::string& key, const std::string& text) override {
-        if (++saves_ == fail_at_) throw std::runtime_error("interrupted");
-        saved.push_back(text);
-        MemoryCheckpointStore::save_checkpoint(key, text);
-    }
-    void stop_failing() { fail_at_ = -1; }
-    std::vector<std::string> saved;
-
-  private:
-    int fail_at_;
-    int saves_ = 0;
-};
-
 TEST(TransientRun, ALockReleasesItsShareAtItsTimeInAResumedRunToo) {
     // Every sphere held, 30 % of them freed at 0.25 s (10 of 30, between the second and the
     // third checkpoint). Held, the bed is rigid mass of the structure whose force is -m a;
@@ -170,7 +154,7 @@ release_fraction = 0.3
     const CampaignConfig config = load_campaign_config_text(text, "release.toml");
     CampaignContext context;
     context.threads = 1;
-    RecordingStore whole_store;
+    testing::InterruptedStore whole_store;
     context.store = &whole_store;
     const CampaignResult whole = run_campaign(config, context);
     ASSERT_EQ(whole.sweeps.size(), 1u);
@@ -190,7 +174,7 @@ release_fraction = 0.3
 
     // Killed at the third checkpoint (after the release's period ran), resumed: the same
     // rows, number for number.
-    RecordingStore store(3);
+    testing::InterruptedStore store(3);
     context.store = &store;
     EXPECT_THROW(run_campaign(config, context), std::runtime_error);
     store.stop_failing();
