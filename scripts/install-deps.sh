@@ -6,7 +6,7 @@
 set -euo pipefail
 
 # gnuplot draws the campaign's SVG plots: the main job needs it as much as the tests do.
-packages=(build-essential cmake ninja-build pkg-config libeigen3-dev libfftw3-dev libnlopt-cxx-dev
+packages=(build-essential cmake ninja-build pkg-config libeigen3-dev libspectra-dev libfftw3-dev libnlopt-cxx-dev
           libtomlplusplus-dev libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev
           gnuplot-nox)
 mpi=(openmpi-bin libopenmpi-dev)
