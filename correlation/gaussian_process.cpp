@@ -103,17 +103,25 @@ std::vector<Eigen::MatrixXd> squared_differences(const Eigen::MatrixXd& x) {
     return d2;
 }
 
-/// K + σn² I of the training inputs (standardised output).
+/// K + σn² I of the training inputs (standardised output). The kernel (a square root and an
+/// exponential per entry, the likelihood's largest cost after the Cholesky factor) is
+/// evaluated on the lower triangle and mirrored: the matrix is symmetric.
 Eigen::MatrixXd covariance_matrix(const std::vector<Eigen::MatrixXd>& d2,
                                   const GpHyperparameters& h) {
     const Eigen::Index n = d2.front().rows();
-    Eigen::MatrixXd r2 = Eigen::MatrixXd::Zero(n, n);
-    for (std::size_t k = 0; k < d2.size(); ++k) {
-        const double l = h.length_scales[k];
-        r2 += d2[k] / (l * l);
+    std::vector<double> length_squared(d2.size());
+    for (std::size_t a = 0; a < d2.size(); ++a) {
+        length_squared[a] = h.length_scales[a] * h.length_scales[a];
     }
-    Eigen::MatrixXd k = r2.unaryExpr(
-        [&](double v) { return h.signal_variance * matern52_unchecked(std::sqrt(v)); });
+    Eigen::MatrixXd k(n, n);
+    for (Eigen::Index j = 0; j < n; ++j) {
+        for (Eigen::Index i = j; i < n; ++i) {
+            double r2 = 0.0;  // Σ_k d2_k / l_k², in the order of k
+            for (std::size_t a = 0; a < d2.size(); ++a) r2 += d2[a](i, j) / length_squared[a];
+            k(i, j) = h.signal_variance * matern52_unchecked(std::sqrt(r2));
+            k(j, i) = k(i, j);
+        }
+    }
     k.diagonal().array() += h.noise_variance;
     return k;
 }
