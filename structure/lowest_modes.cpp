@@ -8,7 +8,6 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <stdexcept>
 #include <vector>
 
@@ -84,29 +83,18 @@ std::optional<Eigenpairs> lowest_eigenpairs(const Eigen::MatrixXd& stiffness,
         if (solver.info() != Spectra::CompInfo::Successful || converged != count) {
             return std::nullopt;
         }
-        Eigenpairs pairs;
-        pairs.values = solver.eigenvalues();
-        pairs.vectors = solver.eigenvectors();
-        // Ascending (the sort rule above gives it; kept explicit), M-normalised.
-        std::vector<Eigen::Index> order(static_cast<std::size_t>(count));
-        std::iota(order.begin(), order.end(), Eigen::Index{0});
-        std::sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) {
-            return pairs.values(a) < pairs.values(b);
-        });
-        Eigenpairs sorted{Eigen::VectorXd(count), Eigen::MatrixXd(n, count)};
+        // Ascending (the sort rule SmallestAlge), M-normalised.
+        Eigenpairs pairs{solver.eigenvalues(), solver.eigenvectors()};
         for (int r = 0; r < count; ++r) {
-            const Eigen::Index from = order[static_cast<std::size_t>(r)];
-            sorted.values(r) = pairs.values(from);
-            const Eigen::VectorXd phi = pairs.vectors.col(from);
-            const double norm2 = phi.dot(m * phi);
+            const double norm2 = pairs.vectors.col(r).dot(m * pairs.vectors.col(r));
             if (!(norm2 > 0.0)) return std::nullopt;
-            sorted.vectors.col(r) = phi / std::sqrt(norm2);
+            pairs.vectors.col(r) /= std::sqrt(norm2);
         }
         // Every eigenvalue up to the last one found, and no other: count of them below tau.
-        const double last = sorted.values(count - 1);
+        const double last = pairs.values(count - 1);
         const double tau = last + 1e-7 * std::abs(last - sigma);
         if (eigenvalues_below(k, m, tau) != count) return std::nullopt;
-        return sorted;
+        return pairs;
     } catch (const std::exception&) {
         return std::nullopt;  // the dense solver answers
     }
