@@ -369,18 +369,15 @@ void Solver::snap_locked(double dt) {
         const Eigen::Vector3d x = e.to_world(lock_local_[i]);
         const Eigen::Vector3d v = e.velocity_at(x);
         const Eigen::Vector3d w = e.angular_velocity_rad_s;
-        const Eigen::Vector3d imp = m * (v - state_.v[i]);
-        const Eigen::Vector3d ang = inertia * (w - state_.w[i]);
-        lock_force_ -= imp / dt;
-        lock_moment_ -= (x - e.position_m).cross(imp / dt) + ang / dt;
-        if (locked_inertia_external_) {
-            // The share of the snap that follows the enclosure's own change of velocity since
-            // the last snap, m (v_e(t) - v_e(t - dt)) / dt: the structure's mass carries it.
+        if (!locked_inertia_external_) {
+            // The held particle's inertia, m (v_e(t) - v_e(t - dt)) / dt with the velocity the
+            // last snap set: the contacts and the weight were balanced after the last sweep
+            // (add_held_reaction). Carried by the structure's mass instead, it is not a load.
             const Eigen::Vector3d before =
                 snap_enclosure_.velocity_at(snap_enclosure_.to_world(lock_local_[i]));
             const Eigen::Vector3d inertia_force = m * (v - before) / dt;
-            lock_force_ += inertia_force;
-            lock_moment_ += (x - e.position_m).cross(inertia_force) +
+            lock_force_ -= inertia_force;
+            lock_moment_ -= (x - e.position_m).cross(inertia_force) +
                             inertia * (w - snap_enclosure_.angular_velocity_rad_s) / dt;
         }
         // the enclosure does the work of the snap
@@ -392,6 +389,26 @@ void Solver::snap_locked(double dt) {
         state_.w[i] = w;
     }
     snap_enclosure_ = e;
+}
+
+void Solver::add_held_reaction(double dt) {
+    // What holds a particle to its enclosure balances, in the same step, the contacts and
+    // the weight its sweep just gave it: m (v - v_e) / dt over the velocity the snap had set,
+    // v_e. Its walls take the contact forces in this step, so the held bed's wall contacts
+    // cancel here and the structure is handed its weight and the contacts of free particles
+    // on it. (Balanced at the next step's snap instead, a settled bed whose contacts do not
+    // carry its weight exactly when the hold begins would hand the structure the difference
+    // as an impulse in the first step, which no snap precedes.)
+    const auto& e = enclosure_state_;
+    for (std::size_t i = 0; i < state_.size(); ++i) {
+        if (!state_.locked[i]) continue;
+        const double m = 1.0 / state_.inv_mass[i], inertia = 1.0 / state_.inv_inertia[i];
+        const Eigen::Vector3d x = e.to_world(lock_local_[i]);
+        const Eigen::Vector3d force = m * (state_.v[i] - e.velocity_at(x)) / dt;
+        wall_force_ += force;
+        wall_moment_ += (x - e.position_m).cross(force) +
+                        inertia * (state_.w[i] - e.angular_velocity_rad_s) / dt;
+    }
 }
 
 Solver::LockedBody Solver::locked_body() const {
@@ -1037,6 +1054,7 @@ void Solver::step(double dt) {
             sweep(law, dt);
         },
         law_.normal, law_.damping, law_.tangential, law_.rolling);
+    if (locked_count_ > 0) add_held_reaction(dt);
     stepped_ = true;
     if (track_energy_) account_energy(dt);
     time_ += dt;

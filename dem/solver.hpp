@@ -242,6 +242,7 @@ class Solver {
     /// than kMaxSizeClasses distinct radii).
     void build_size_classes();
     void snap_locked(double dt);
+    void add_held_reaction(double dt);
     int thread_count() const;
     std::size_t grain() const { return static_cast<std::size_t>(options_.parallel_grain); }
 

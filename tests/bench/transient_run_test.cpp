@@ -239,8 +239,13 @@ fraction = 1.0
         force_worst =
             std::max(force_worst, std::abs(row[4] - (inertia - bed_kg * kStandardGravity)));
     }
-    EXPECT_LT(worst, 1e-3 * largest) << "largest " << largest;
-    EXPECT_LT(force_worst, 1e-6 * force_scale) << "scale " << force_scale;
+    // Within the step's sampling of the drive, as the table alone (1.6e-5 measured): the hold
+    // balances the bed's contacts in the step they act, so a settled bed whose contacts do
+    // not carry its weight exactly when the run begins gives the table no impulse (balanced a
+    // step later, it did: 8.7e-4 of the peak, and 1.7e-3 with the pair contacts rounded
+    // otherwise, a free vibration that followed the filling's rounding).
+    EXPECT_LT(worst, 2e-4 * largest) << "largest " << largest;
+    EXPECT_LT(force_worst, 1e-9 * force_scale) << "scale " << force_scale;
 }
 
 TEST(TransientRun, WithoutAFixedDriveOrAFrequencyItIsAConfigError) {
