@@ -759,9 +759,12 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
             k.delta = delta;
             k.n = n;
             k.dt = dt;
-            const Eigen::Vector3d bi = -(ri - 0.5 * delta) * n;  // branch vector of i
-            const Eigen::Vector3d bj = (rj - 0.5 * delta) * n;
-            const Eigen::Vector3d vrel = vi + wi.cross(bi) - v[j] - w[j].cross(bj);
+            // Branch vectors b_i = -a_i n and b_j = a_j n to the contact point: the spins'
+            // share of the relative velocity, w_i x b_i - w_j x b_j, is n x (a_i w_i + a_j w_j),
+            // and the torques b_i x F_t and b_j x (-F_t) are -a_i and -a_j times n x F_t: two
+            // cross products instead of four.
+            const double ai = ri - 0.5 * delta, aj = rj - 0.5 * delta;
+            const Eigen::Vector3d vrel = vi - v[j] + n.cross(ai * wi + aj * w[j]);
             if (class_count_ > 0) {  // no division per contact
                 const MassConstants& mc =
                     class_pair_[size_class_[i] * class_count_ + size_class_[j]];
@@ -787,10 +790,11 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
             k.v_t = vrel - vn * n;
             const LawForce r = law.evaluate(k, p, hist);
             const Eigen::Vector3d f = r.fn * n + r.ft;
-            const Eigen::Vector3d ti = bi.cross(r.ft) + r.mr;
+            const Eigen::Vector3d nxft = n.cross(r.ft);
+            const Eigen::Vector3d ti = r.mr - ai * nxft;
             PairShare& share = pair_share_[q];
             share.f = f;
-            share.tj = bj.cross(-r.ft) - r.mr;
+            share.tj = -aj * nxft - r.mr;
             if (serial_sweep_) {
                 // j > i is integrated later in this sweep: it gathers its touching slots from
                 // this list, filled in increasing i, the order of its reverse index.
@@ -802,8 +806,8 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
             a.t += ti;
             ++loc.contacts;
             if (loc.log != nullptr) {
-                loc.log->push_back({static_cast<std::uint32_t>(i), j, delta, n, f, ti, xi + bi,
-                                    r.f_spring, r.fn - r.f_spring});
+                loc.log->push_back({static_cast<std::uint32_t>(i), j, delta, n, f, ti,
+                                    Eigen::Vector3d(xi - ai * n), r.f_spring, r.fn - r.f_spring});
             }
         }
     }
