@@ -37,9 +37,11 @@ struct SweepCheckpoint {
     /// stiffness and time step, the coupled step's limit) as `key=value` words: a checkpoint
     /// resumes only where this build chooses the same (bench/sweep_runner.cpp).
     std::string numerics;
-    int points_done = 0;          ///< finished frequencies of the sweep
-    double next_amplitude = 0.0;  ///< the warm-start amplitude the last point ended with
-    SpecimenState state;          ///< the specimen after the last finished point
+    int points_done = 0;  ///< finished frequencies of the sweep
+    /// The warm-start amplitude: the drive the last point would still have needed for the
+    /// target (its final drive for a fixed drive).
+    double next_amplitude = 0.0;
+    SpecimenState state;                         ///< the specimen after the last finished point
     std::vector<identification::PointRow> rows;  ///< the finished points
     std::vector<std::string> control_log;        ///< per point: how the controller got there
     std::vector<std::string> energy_log;         ///< energy.csv rows of the finished points

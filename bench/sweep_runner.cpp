@@ -25,6 +25,7 @@
 #include "bench/transient_run.hpp"
 #include "control/controller.hpp"
 #include "control/fixed_drive.hpp"
+#include "control/update.hpp"
 #include "core/significant_text.hpp"
 #include "core/units.hpp"
 #include "identification/recording_io.hpp"
@@ -491,7 +492,17 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
                 }
             }
             checkpoint.points_done = i + 1;
-            checkpoint.next_amplitude = result.amplitude_final;
+            // The next point starts from the drive this one would still have needed for the
+            // target (the controller's own warm start, docs/control.md): a point accepted
+            // within the tolerance but off target would otherwise hand its miss on, and with
+            // the frequency step's misprediction it crosses the tolerance more often
+            // (docs/performance.md, the full campaign's later points).
+            checkpoint.next_amplitude =
+                fixed ? result.amplitude_final
+                      : control::limit_step(result.amplitude_final,
+                                            control::ratio_amplitude(result.amplitude_final,
+                                                                     result.rms_final, target_rms),
+                                            campaign.controller);
             checkpoint.state = specimen.state();
             save();
             out.periods_simulated += result.periods_simulated;

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "bench/campaign.hpp"
 #include "bench/frequency_grid.hpp"
@@ -81,6 +82,48 @@ TEST(GridRefinement, ALightlyDampedPeakBetweenTwoPointsIsResolvedByAddingPointsN
     EXPECT_TRUE(refined.levels.front().half_power.ok());
     EXPECT_GT(refined.sweeps.front().frequencies_hz.size(), 9u);
     EXPECT_LE(refined.sweeps.front().frequencies_hz.size(), 19u);
+}
+
+TEST(WarmStart, ALaterPointStartsAtTheDriveThePreviousWouldHaveNeededForTheTarget) {
+    // The first point driven 3 % too hard is accepted (inside the 5 % tolerance) without an
+    // update. On a linear specimen the equivalent mode predicts the next gain exactly, so
+    // every later point lands on the target if its start corrects the previous miss, and
+    // repeats the 3 % if it does not.
+    CampaignConfig config = rigid_beam_campaign(0.005, 0);
+    set_value_text(config, "campaign.levels_g", "[0.5]", "test");
+    CampaignContext context;
+    context.threads = 1;
+    const auto columns = [](const std::string& line) {
+        std::vector<std::string> out(1);
+        for (const char c : line) {
+            if (c == ',') {
+                out.emplace_back();
+            } else {
+                out.back() += c;
+            }
+        }
+        return out;
+    };
+    const double target = 0.5 * 9.80665;
+    const CampaignResult exact = run_campaign(config, context);
+    const auto first = columns(exact.sweeps.front().control_log.front());
+    ASSERT_GE(first.size(), 8u);
+    ASSERT_NEAR(std::stod(first[7]) / target, 1.0, 1e-3) << "the linear start is on target";
+    const double on_target = std::stod(first[6]);
+
+    set_value_text(config, "controller.initial_amplitude", std::to_string(1.03 * on_target),
+                   "test");
+    const CampaignResult off = run_campaign(config, context);
+    const auto& log = off.sweeps.front().control_log;
+    ASSERT_EQ(log.size(), 9u);
+    const auto missed = columns(log.front());
+    EXPECT_EQ(missed[5], "0") << "accepted as started";
+    EXPECT_NEAR(std::stod(missed[7]) / target, 1.03, 5e-3);
+    for (std::size_t i = 1; i < log.size(); ++i) {
+        const auto point = columns(log[i]);
+        EXPECT_EQ(point[5], "0") << log[i];
+        EXPECT_NEAR(std::stod(point[7]) / target, 1.0, 2e-4) << log[i];
+    }
 }
 
 }  // namespace
