@@ -71,9 +71,11 @@ endfunction()
 # on several threads, so that ctest -j never puts two of them on the two cores and no idle
 # thread spins at a barrier. BESIDE_OTHERS: the tests of a SERIAL suite that match the
 # GoogleTest filter run on one thread and may share the machine; being long, they are started
-# first (COST), so that the other core works through the rest meanwhile.
+# first (COST), so that the other core works through the rest meanwhile. ONE_PROCESS: the
+# whole executable is one CTest test, so that its tests share what they build once (a DEM bed
+# that takes most of each test's time under the sanitizers); started first, as it is long.
 function(sb_add_test name label)
-  cmake_parse_arguments(ARG "SERIAL" "BESIDE_OTHERS" "SOURCES;DEPENDS" ${ARGN})
+  cmake_parse_arguments(ARG "SERIAL;ONE_PROCESS" "BESIDE_OTHERS" "SOURCES;DEPENDS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPENDS} sb_test_main sb::warnings)
   target_compile_definitions(${name} PRIVATE SB_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
@@ -83,6 +85,9 @@ function(sb_add_test name label)
     gtest_discover_tests(${name} TEST_FILTER "-${ARG_BESIDE_OTHERS}" TEST_LIST ${name}_alone
       PROPERTIES LABELS ${label} RUN_SERIAL TRUE ENVIRONMENT "OMP_WAIT_POLICY=PASSIVE"
       DISCOVERY_TIMEOUT 60)
+  elseif(ARG_ONE_PROCESS)
+    add_test(NAME ${name} COMMAND ${name})
+    set_tests_properties(${name} PROPERTIES LABELS ${label} COST 1000)
   elseif(ARG_SERIAL)
     gtest_discover_tests(${name} PROPERTIES LABELS ${label} RUN_SERIAL TRUE
       ENVIRONMENT "OMP_WAIT_POLICY=PASSIVE" DISCOVERY_TIMEOUT 60)

@@ -23,6 +23,9 @@ class KilledAfterSaves : public MemoryCheckpointStore {
         MemoryCheckpointStore::save_progress(work, key, text);
         if (work == work_ && ++saves == kill_at_) throw Killed{};
     }
+    /// Dies again after the `kill_at`-th save counted from the first (0: never): the next
+    /// process of a run killed several times over.
+    void kill_at(int kill_at) { kill_at_ = kill_at; }
     int saves = 0;
 
   private:

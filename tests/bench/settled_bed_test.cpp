@@ -41,26 +41,32 @@ TEST(SettledBed, APourKilledWhileSettlingResumesToTheBedOfAnUninterruptedOne) {
     EXPECT_FALSE(counting.load_progress(Unfinished::bed, "bed"));  // dropped once the bed is saved
     ASSERT_GT(counting.saves, 3);
 
+    // Killed three times over (after the first save, half-way and before the last), each
+    // time resumed from what the last one saved, then left to finish: one pour's work for
+    // three kills, each resume starting from another one's progress.
+    KilledAfterSaves store(0);
+    store.open("hash", false);
     for (const int kill_at : {1, counting.saves / 2, counting.saves - 1}) {
         SCOPED_TRACE("killed after save " + std::to_string(kill_at) + " of " +
                      std::to_string(counting.saves));
-        KilledAfterSaves store(kill_at);
-        store.open("hash", false);
+        store.kill_at(kill_at);
         EXPECT_THROW(
             settled_bed(damper, kStiffness, upright, kGravity, 7, &store, "bed", nullptr, 0.0),
             Killed);
+        EXPECT_EQ(store.saves, kill_at);
         ASSERT_TRUE(store.load_progress(Unfinished::bed, "bed"));
         ASSERT_FALSE(store.load_bed("bed"));
-        bool settled_here = false;
-        const dem::ParticleSet resumed = settled_bed(damper, kStiffness, upright, kGravity, 7,
-                                                     &store, "bed", &settled_here, 0.0);
-        EXPECT_TRUE(settled_here);
-        EXPECT_EQ(resumed.positions_m, plain.positions_m);
-        EXPECT_EQ(resumed.velocities_m_s, plain.velocities_m_s);
-        EXPECT_EQ(resumed.angular_velocities_rad_s, plain.angular_velocities_rad_s);
-        EXPECT_EQ(store.saves, counting.saves);  // the resumed pour saved only what was left
-        EXPECT_FALSE(store.load_progress(Unfinished::bed, "bed"));
     }
+    store.kill_at(0);
+    bool settled_here = false;
+    const dem::ParticleSet resumed =
+        settled_bed(damper, kStiffness, upright, kGravity, 7, &store, "bed", &settled_here, 0.0);
+    EXPECT_TRUE(settled_here);
+    EXPECT_EQ(resumed.positions_m, plain.positions_m);
+    EXPECT_EQ(resumed.velocities_m_s, plain.velocities_m_s);
+    EXPECT_EQ(resumed.angular_velocities_rad_s, plain.angular_velocities_rad_s);
+    EXPECT_EQ(store.saves, counting.saves);  // each resume saved only what was left
+    EXPECT_FALSE(store.load_progress(Unfinished::bed, "bed"));
 }
 
 TEST(SettledBed, ADamagedOrForeignSettlingProgressIsRefusedNamingIt) {
