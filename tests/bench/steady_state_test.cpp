@@ -10,6 +10,7 @@
 #include "bench/campaign.hpp"
 #include "bench/frequency_grid.hpp"
 #include "core/text_file.hpp"
+#include "core/units.hpp"
 #include "structure/linear_model.hpp"
 #include "structure/modal_analysis.hpp"
 
@@ -104,7 +105,7 @@ TEST(WarmStart, ALaterPointStartsAtTheDriveThePreviousWouldHaveNeededForTheTarge
         }
         return out;
     };
-    const double target = 0.5 * 9.80665;
+    const double target = g_to_m_s2(0.5);
     const CampaignResult exact = run_campaign(config, context);
     const auto first = columns(exact.sweeps.front().control_log.front());
     ASSERT_GE(first.size(), 8u);
