@@ -493,16 +493,11 @@ SweepResult run_sweep(const CampaignConfig& config, const SweepTask& task,
             }
             checkpoint.points_done = i + 1;
             // The next point starts from the drive this one would still have needed for the
-            // target (the controller's own warm start, docs/control.md): a point accepted
-            // within the tolerance but off target would otherwise hand its miss on, and with
-            // the frequency step's misprediction it crosses the tolerance more often
-            // (docs/performance.md, the full campaign's later points).
+            // target, as the controller's own warm start does (docs/control.md).
             checkpoint.next_amplitude =
                 fixed ? result.amplitude_final
-                      : control::limit_step(result.amplitude_final,
-                                            control::ratio_amplitude(result.amplitude_final,
-                                                                     result.rms_final, target_rms),
-                                            campaign.controller);
+                      : control::warm_start_amplitude(result.amplitude_final, result.rms_final,
+                                                      target_rms, campaign.controller);
             checkpoint.state = specimen.state();
             save();
             out.periods_simulated += result.periods_simulated;

@@ -94,8 +94,7 @@ double AmplitudeController::start_amplitude(double target_rms) const {
     }
     // Warm start: the previous amplitude scaled by the ratio the previous point would still
     // have needed to reach this target.
-    return limit_step(previous_amplitude_,
-                      ratio_amplitude(previous_amplitude_, previous_rms_, target_rms), options_);
+    return warm_start_amplitude(previous_amplitude_, previous_rms_, target_rms, options_);
 }
 
 void AmplitudeController::set_start_amplitude(double amplitude) {

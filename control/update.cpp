@@ -80,4 +80,9 @@ double limit_step(double current, double proposed, const ControllerOptions& opti
     return bounded > 0.0 ? bounded : down;
 }
 
+double warm_start_amplitude(double amplitude, double level, double target_rms,
+                            const ControllerOptions& options) {
+    return limit_step(amplitude, ratio_amplitude(amplitude, level, target_rms), options);
+}
+
 }  // namespace sb::control

@@ -55,4 +55,10 @@ inline constexpr double kMaxPowerLawExponent = 4.0;
 /// non-finite or non-positive proposal counts as a step to the nearer limit.
 [[nodiscard]] double limit_step(double current, double proposed, const ControllerOptions& options);
 
+/// The warm start after a point driven at `amplitude` that gave `level`: the drive it would
+/// still have needed for `target_rms` (the ratio rule), limited by limit_step. A point
+/// accepted within the tolerance but off target does not hand its miss on to the next.
+[[nodiscard]] double warm_start_amplitude(double amplitude, double level, double target_rms,
+                                          const ControllerOptions& options);
+
 }  // namespace sb::control

@@ -4,6 +4,7 @@
 // half-power points lie 20 % either side of the mode).
 #include <gtest/gtest.h>
 
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -95,14 +96,9 @@ TEST(WarmStart, ALaterPointStartsAtTheDriveThePreviousWouldHaveNeededForTheTarge
     CampaignContext context;
     context.threads = 1;
     const auto columns = [](const std::string& line) {
-        std::vector<std::string> out(1);
-        for (const char c : line) {
-            if (c == ',') {
-                out.emplace_back();
-            } else {
-                out.back() += c;
-            }
-        }
+        std::vector<std::string> out;
+        std::istringstream in(line);
+        for (std::string cell; std::getline(in, cell, ',');) out.push_back(cell);
         return out;
     };
     const double target = g_to_m_s2(0.5);
