@@ -819,8 +819,6 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
     // frame: stored by step() for a turned enclosure, else the shift by the origin.
     if (rotated_ ? !deep_inside(local_x_[i]) : !deep_inside(xi - es.position_m)) {
         const Eigen::Vector3d xl = rotated_ ? local_x_[i] : Eigen::Vector3d(xi - es.position_m);
-        const bool inside = has_obstacles_ ? enclosure_.contains(xl) : enclosure_.inside_walls(xl);
-        if (!inside && loc.outside == kNoParticle) loc.outside = static_cast<int>(i);
         a.wf.setZero();
         a.wm.setZero();
         const std::size_t base = i * wall_cap_;
@@ -830,66 +828,74 @@ SB_ALWAYS_INLINE Solver::Accumulated Solver::own_contacts(const Law& law, std::s
         const std::uint32_t lateral_walls = enclosure_.lateral_wall_ids();
         const std::uint32_t prev_count = prev_wall_count_[i];
         std::uint32_t prev = 0;
-        enclosure_.for_each_contact(
-            xl, ri, [&](std::uint32_t wall, const Eigen::Vector3d& nl, double delta) {
-                const std::size_t s = base + count++;
-                wall_id_[s] = wall;
-                Eigen::Vector3d no_hist = Eigen::Vector3d::Zero();
-                Eigen::Vector3d& hist = Law::kHasHistory ? wall_hist_[s] : no_hist;
-                if constexpr (Law::kHasHistory) {
-                    while (prev < prev_count && prev_wall_id_[base + prev] < wall) ++prev;
-                    hist = prev < prev_count && prev_wall_id_[base + prev] == wall
-                               ? prev_wall_hist_[base + prev]
-                               : Eigen::Vector3d::Zero();
-                }
-                const Eigen::Vector3d n = rotated_ ? es.rotate(nl) : nl;
-                ContactKinematics k;
-                k.delta = delta;
-                k.n = n;
-                k.dt = dt;
-                const Eigen::Vector3d bi = -(ri - 0.5 * delta) * n;
-                const Eigen::Vector3d xc = xi + bi;
-                const Eigen::Vector3d vrel = vi + wi.cross(bi) - es.velocity_at(xc);
-                if (class_count_ > 0) {
-                    const MassConstants& mc = class_wall_[size_class_[i]];
-                    k.m_eff = mc.m_eff;
-                    k.m_t = mc.m_t;
-                    k.i_eff = mc.i_eff;
-                } else {
-                    const double imi = state_.inv_mass[i], iii = state_.inv_inertia[i];
-                    k.m_eff = 1.0 / imi;
-                    k.m_t = 1.0 / (3.5 * imi);
-                    k.i_eff = 1.0 / iii;
-                }
-                k.r_eff = ri;
-                k.r_hertz = wall >= kRodBase ? hertz_r_rod_[i]
-                            : wall == 0      ? hertz_r_side_[i]  // cylinder side (box: = ri)
-                                             : ri;
-                k.omega_rel = wi - es.angular_velocity_rad_s;
-                if (delta > frac * ri) overlap = true;
-                const double vn = vrel.dot(n);
-                k.delta_dot = -vn;
-                k.v_t = vrel - vn * n;
-                const LawForce r = law.evaluate(k,
-                                                wall >= kRodBase       ? rod_coefficients
-                                                : wall < lateral_walls ? side_coefficients
-                                                                       : wall_coefficients,
-                                                hist);
-                const Eigen::Vector3d f = r.fn * n + r.ft;
-                const Eigen::Vector3d ti = bi.cross(r.ft) + r.mr;
-                wall_delta_[s] = delta;
-                wall_kl_[s] = r.k_law;
-                a.f += f;
-                a.t += ti;
-                a.wf -= f;
-                a.wm += Eigen::Vector3d((xc - es.position_m).cross(-f) - r.mr);
-                ++loc.contacts;
-                if (loc.log != nullptr) {
-                    loc.log->push_back({static_cast<std::uint32_t>(i),
-                                        static_cast<std::uint32_t>(state_.size()) + wall, delta, n,
-                                        f, ti, xc, r.f_spring, r.fn - r.f_spring});
-                }
-            });
+        auto contact = [&](std::uint32_t wall, const Eigen::Vector3d& nl, double delta) {
+            const std::size_t s = base + count++;
+            wall_id_[s] = wall;
+            Eigen::Vector3d no_hist = Eigen::Vector3d::Zero();
+            Eigen::Vector3d& hist = Law::kHasHistory ? wall_hist_[s] : no_hist;
+            if constexpr (Law::kHasHistory) {
+                while (prev < prev_count && prev_wall_id_[base + prev] < wall) ++prev;
+                hist = prev < prev_count && prev_wall_id_[base + prev] == wall
+                           ? prev_wall_hist_[base + prev]
+                           : Eigen::Vector3d::Zero();
+            }
+            const Eigen::Vector3d n = rotated_ ? es.rotate(nl) : nl;
+            ContactKinematics k;
+            k.delta = delta;
+            k.n = n;
+            k.dt = dt;
+            const Eigen::Vector3d bi = -(ri - 0.5 * delta) * n;
+            const Eigen::Vector3d xc = xi + bi;
+            const Eigen::Vector3d vrel = vi + wi.cross(bi) - es.velocity_at(xc);
+            if (class_count_ > 0) {
+                const MassConstants& mc = class_wall_[size_class_[i]];
+                k.m_eff = mc.m_eff;
+                k.m_t = mc.m_t;
+                k.i_eff = mc.i_eff;
+            } else {
+                const double imi = state_.inv_mass[i], iii = state_.inv_inertia[i];
+                k.m_eff = 1.0 / imi;
+                k.m_t = 1.0 / (3.5 * imi);
+                k.i_eff = 1.0 / iii;
+            }
+            k.r_eff = ri;
+            k.r_hertz = wall >= kRodBase ? hertz_r_rod_[i]
+                        : wall == 0      ? hertz_r_side_[i]  // cylinder side (box: = ri)
+                                         : ri;
+            k.omega_rel = wi - es.angular_velocity_rad_s;
+            if (delta > frac * ri) overlap = true;
+            const double vn = vrel.dot(n);
+            k.delta_dot = -vn;
+            k.v_t = vrel - vn * n;
+            const LawForce r = law.evaluate(k,
+                                            wall >= kRodBase       ? rod_coefficients
+                                            : wall < lateral_walls ? side_coefficients
+                                                                   : wall_coefficients,
+                                            hist);
+            const Eigen::Vector3d f = r.fn * n + r.ft;
+            const Eigen::Vector3d ti = bi.cross(r.ft) + r.mr;
+            wall_delta_[s] = delta;
+            wall_kl_[s] = r.k_law;
+            a.f += f;
+            a.t += ti;
+            a.wf -= f;
+            a.wm += Eigen::Vector3d((xc - es.position_m).cross(-f) - r.mr);
+            ++loc.contacts;
+            if (loc.log != nullptr) {
+                loc.log->push_back({static_cast<std::uint32_t>(i),
+                                    static_cast<std::uint32_t>(state_.size()) + wall, delta, n, f,
+                                    ti, xc, r.f_spring, r.fn - r.f_spring});
+            }
+        };
+        // The outside guard: among rods, the lattice's nearest nodes serve both queries.
+        bool inside;
+        if (has_obstacles_) {
+            inside = enclosure_.contacts_and_contains(xl, ri, contact);
+        } else {
+            inside = enclosure_.inside_walls(xl);
+            enclosure_.for_each_contact(xl, ri, contact);
+        }
+        if (!inside && loc.outside == kNoParticle) loc.outside = static_cast<int>(i);
     }
     wall_count_[i] = count;
     if (overlap && loc.overlap == kNoParticle) loc.overlap = static_cast<int>(i);

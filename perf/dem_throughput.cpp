@@ -22,7 +22,9 @@
 // --bed (case b): settled bed cache; read if present, else settled and written.
 // --settled-csv FILE (case b): instead, a bed the bench poured (OUT/settled/*.csv of `run` or
 // `characterize`, in paper 002's cavity): its spheres, count and size, the cavity unscaled;
-// --order cell sorts them by cell of the neighbour grid first (default: as poured).
+// --order cell sorts them by cell of the neighbour grid first (default: as poured);
+// --grid-quarter 1: the bed was poured in a quarter of paper 002's grid cavity (15 x 15 mm
+// among 1 mm rods on 5 mm cells, validation/paper002/table2.sh), which it is then shaken in.
 // --write-lammps-data: writes the initial state as a LAMMPS `atom_style sphere` data file
 // and exits; --lammps-vars 1 prints the matching `-var` arguments of validation/lammps/
 // in.damper (a) or in.box5000 (b) and exits. Otherwise prints one line `key=value ...` with
@@ -341,7 +343,7 @@ std::string lammps_vars(const Case& c) {
               << "\nusage: dem_throughput a|b|c [--threads N] [--warmup STEPS] [--steps STEPS]"
                  " [--ledger 0|1] [--bed FILE] [--count N (case b)] [--write-lammps-data FILE]"
                  " [--lammps-vars 1] [--skin FRACTION] [--adapt-skin 0|1] [--level-g PEAK]"
-                 " [--settled-csv FILE [--order poured|cell] (case b)]\n";
+                 " [--settled-csv FILE [--order poured|cell] [--grid-quarter 0|1] (case b)]\n";
     std::exit(2);
 }
 
@@ -384,7 +386,7 @@ int main(int argc, char** argv) {
     int threads = 1;
     bool ledger = false;
     std::string bed, lammps_data, settled_csv, order = "poured";
-    bool print_lammps_vars = false;
+    bool print_lammps_vars = false, grid_quarter = false;
     for (int k = 2; k < argc; ++k) {
         const std::string key = argv[k];
         if (k + 1 >= argc) usage(key + ": missing value");
@@ -403,6 +405,8 @@ int main(int argc, char** argv) {
             bed = value;
         } else if (key == "--settled-csv") {
             settled_csv = value;
+        } else if (key == "--grid-quarter") {
+            grid_quarter = parse_long(key, value) != 0;
         } else if (key == "--order") {
             order = value;
             if (order != "poured" && order != "cell") usage("--order: expected poured or cell");
@@ -429,6 +433,18 @@ int main(int argc, char** argv) {
 
     if (!settled_csv.empty() && (name != "b" || !bed.empty() || count_b != 5000)) {
         usage("--settled-csv applies to case b, without --bed and --count");
+    }
+    if (grid_quarter && settled_csv.empty()) {
+        usage("--grid-quarter 1 needs --settled-csv (a bed poured among the rods)");
+    }
+    if (grid_quarter) {  // validation/paper002/table2.sh's quarter of the grid's cavity
+        auto& e = c.options.enclosure;
+        e.length_x_m = 15e-3;
+        e.length_y_m = 15e-3;
+        e.rods.enabled = true;
+        e.rods.rod_diameter_m = 1e-3;
+        e.rods.cell_size_m = 5e-3;
+        e.rods.origin_m = Eigen::Vector3d(2.5e-3, 2.5e-3, 0.0);
     }
     ParticleSet p;
     if (name != "b") {

@@ -5,7 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <limits>
+#include <random>
+#include <tuple>
+#include <vector>
 
 #include "dem/solver.hpp"
 #include "test_helpers.hpp"
@@ -45,6 +49,38 @@ TEST(Enclosure, ContainsRejectsCentresInsideRodsAndPlates) {
     // outside the walls and non-finite
     EXPECT_FALSE(enc.contains({16e-3, 2.5e-3, 2.5e-3}));
     EXPECT_FALSE(enc.contains({kNaN, 0.0, 1e-3}));
+}
+
+TEST(Enclosure, ContactsAndContainsIsForEachContactAndContains) {
+    // The sweep's fused query against the two it replaces, over centres all through the
+    // grid's cavity: inside rods and plates, on the walls, outside and not finite.
+    const Enclosure enclosure(grid_box());
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> across(-16e-3, 16e-3), up(-1e-3, 51e-3);
+    using Emitted = std::vector<std::tuple<std::uint32_t, double, double, double, double>>;
+    int inside = 0, outside = 0, touching = 0;
+    for (int k = 0; k < 20000; ++k) {
+        const Eigen::Vector3d xl = k == 0 ? Eigen::Vector3d(kNaN, 0.0, 1e-3)
+                                          : Eigen::Vector3d(across(rng), across(rng), up(rng));
+        const double r = 1e-3;
+        Emitted expected, got;
+        enclosure.for_each_contact(xl, r,
+                                   [&](std::uint32_t id, const Eigen::Vector3d& n, double d) {
+                                       expected.emplace_back(id, n.x(), n.y(), n.z(), d);
+                                   });
+        const bool in = enclosure.contacts_and_contains(
+            xl, r, [&](std::uint32_t id, const Eigen::Vector3d& n, double d) {
+                got.emplace_back(id, n.x(), n.y(), n.z(), d);
+            });
+        ASSERT_EQ(in, enclosure.contains(xl)) << xl.transpose();
+        ASSERT_EQ(got, expected) << xl.transpose();
+        (in ? inside : outside) += 1;
+        touching += expected.empty() ? 0 : 1;
+    }
+    // every branch taken: spheres inside and outside, most of them touching a rod or a wall
+    EXPECT_GT(inside, 10000);
+    EXPECT_GT(outside, 1000);
+    EXPECT_GT(touching, 10000);
 }
 
 TEST(Enclosure, RodsLyingOnTheWallsAreNotObstacles) {
