@@ -98,13 +98,11 @@ class Enclosure {
         double offset[3];
     };
     RodNodes rod_nodes(const Eigen::Vector3d& xl) const;
-    /// True if the centre lies strictly inside a rod.
-    bool inside_rod(const RodNodes& nodes) const;
     bool inside_plate(const Eigen::Vector3d& xl) const;
     template <class Emit>
     void walls_and_plates_contacts(const Eigen::Vector3d& xl, double r, Emit& emit) const;
     /// Emits the rods the sphere overlaps; true if its centre lies strictly inside one (the
-    /// squared distance inside_rod tests, computed here anyway).
+    /// outside guard's test, from the squared distances computed here anyway).
     template <class Emit>
     bool rods_contacts(const RodNodes& nodes, double r, Emit& emit) const;
 
@@ -165,18 +163,6 @@ inline Enclosure::RodNodes Enclosure::rod_nodes(const Eigen::Vector3d& xl) const
     return n;
 }
 
-inline bool Enclosure::inside_rod(const RodNodes& nodes) const {
-    const double rr = 0.5 * options_.rods.rod_diameter_m;
-    for (int a = 0; a < 3; ++a) {  // the nearest rod along each axis, as in rods_contacts
-        const int b = (a + 1) % 3, c = (a + 2) % 3;
-        const double fb = nodes.node[b], fc = nodes.node[c];
-        if (fb < rod_lo_[b] || fb > rod_hi_[b] || fc < rod_lo_[c] || fc > rod_hi_[c]) continue;
-        const double db = nodes.offset[b], dc = nodes.offset[c];
-        if (db * db + dc * dc < rr * rr) return true;
-    }
-    return false;
-}
-
 inline bool Enclosure::inside_plate(const Eigen::Vector3d& xl) const {
     for (const auto& pl : options_.plates) {
         if ((xl.array() > pl.min_corner_m.array()).all() &&
@@ -188,7 +174,10 @@ inline bool Enclosure::inside_plate(const Eigen::Vector3d& xl) const {
 }
 
 inline bool Enclosure::inside_obstacle(const Eigen::Vector3d& xl) const {
-    return inside_plate(xl) || (options_.rods.enabled && inside_rod(rod_nodes(xl)));
+    if (inside_plate(xl)) return true;
+    if (!options_.rods.enabled) return false;
+    auto ignore = [](std::uint32_t, const Eigen::Vector3d&, double) {};
+    return rods_contacts(rod_nodes(xl), 0.0, ignore);  // its centre test, no contacts wanted
 }
 
 template <class Emit>
@@ -283,7 +272,6 @@ bool Enclosure::rods_contacts(const RodNodes& nodes, double r, Emit& emit) const
         Eigen::Vector3d d = Eigen::Vector3d::Zero();
         d[b] = nodes.offset[b];
         d[c] = nodes.offset[c];
-        // d has a zero component, so its squared norm is inside_rod's db^2 + dc^2 exactly
         const double d2 = d.squaredNorm();
         if (d2 < rr * rr) in_rod = true;
         const double dist = std::sqrt(d2);
